@@ -1,0 +1,20 @@
+// Subcommands of `brdf`, one file each. Every Add*Command registers its options on `parent`
+// and returns the function to run when the subcommand was chosen; that function returns the
+// exit status and throws the typed errors of core/errors.h, which main() maps to exit codes.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace brdf::cli {
+
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int()> run;
+};
+
+Command AddInfoCommand(CLI::App& parent);
+Command AddConvertCommand(CLI::App& parent);
+Command AddDemoCommand(CLI::App& parent);
+
+}  // namespace brdf::cli

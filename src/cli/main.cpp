@@ -1,0 +1,46 @@
+// brdf: measure, fit, check and preview reflectance. Maps typed errors to exit statuses
+// (DESIGN §3): 0 success, 2 bad usage or bad input, 3 a computation failed, 1 an internal error.
+#include <iostream>
+#include <vector>
+
+#include "cli/commands.h"
+#include "core/errors.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"brdfkit: measure, fit, check and preview reflectance (BRDFs)", "brdf"};
+  app.set_version_flag("--version", std::string("brdf ") + BRDFKIT_VERSION);
+  app.require_subcommand(1);
+  app.footer("Run 'brdf COMMAND --help' for the options of each command.");
+
+  const std::vector<brdf::cli::Command> commands = {
+      brdf::cli::AddDemoCommand(app),
+      brdf::cli::AddInfoCommand(app),
+      brdf::cli::AddConvertCommand(app),
+  };
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int status = app.exit(error);
+    return status == 0 ? 0 : 2;
+  }
+
+  try {
+    for (const brdf::cli::Command& command : commands) {
+      if (command.app->parsed()) return command.run();
+    }
+  } catch (const brdf::ComputeError& error) {
+    std::cerr << "brdf: " << error.what() << "\n";
+    return 3;
+  } catch (const brdf::Error& error) {
+    std::cerr << "brdf: " << error.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "brdf: out of memory\n";
+    return 1;
+  } catch (const std::exception& error) {
+    std::cerr << "brdf: internal error: " << error.what() << "\n";
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,66 @@
+// Measurement file formats (DESIGN §4): one reader/writer per file, chosen by content first
+// and by extension second (a small taxonomy after tev: a sniffer says "mine" or "not mine";
+// a reader that claims a file and finds it broken throws InputError naming file and line/byte).
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/colour.h"
+#include "core/measurement.h"
+
+namespace brdf {
+
+struct ReadOptions {
+  // Illuminant under which spectral files (ASTM, pbrt-v2) become RGB; recorded in metadata.
+  Illuminant illuminant = Illuminant::kD65;
+};
+
+// What a writer wants the user to know (e.g. samples binned onto a grid).
+struct WriteReport {
+  std::vector<std::string> warnings;
+};
+
+struct FileFormat {
+  std::string name;         // "native-csv", "merl", "astm", "pbrt-brdf", "zemax"
+  std::string description;  // one line for --help and `brdf info`
+  std::vector<std::string> extensions;  // lower case, with the dot
+  // True when the first bytes of a file (up to 4 KiB) and its size say "this is mine".
+  bool (*sniff)(std::string_view head, int64_t file_size) = nullptr;
+  Measurement (*read)(const std::string& path, const ReadOptions& options) = nullptr;
+  WriteReport (*write)(const Measurement& measurement, const std::string& path) = nullptr;
+};
+
+const std::vector<FileFormat>& FileFormats();
+
+// The format of an existing file: by content, else by extension. Throws InputError when
+// neither identifies it (listing the formats it knows).
+const FileFormat& DetectFormat(const std::string& path);
+// The format to write `path` in: `format_name` if given, else by extension. Throws UsageError
+// when the format is unknown or cannot be written.
+const FileFormat& OutputFormat(const std::string& path, const std::string& format_name = "");
+
+Measurement ReadMeasurement(const std::string& path, const ReadOptions& options = {});
+WriteReport WriteMeasurement(const Measurement& measurement, const std::string& path,
+                             const std::string& format_name = "");
+
+// Readers and writers, one per file (registered in formats.cpp).
+Measurement ReadNativeCsv(const std::string& path, const ReadOptions& options);
+WriteReport WriteNativeCsv(const Measurement& measurement, const std::string& path);
+bool SniffNativeCsv(std::string_view head, int64_t file_size);
+
+Measurement ReadMerl(const std::string& path, const ReadOptions& options);
+WriteReport WriteMerl(const Measurement& measurement, const std::string& path);
+bool SniffMerl(std::string_view head, int64_t file_size);
+
+Measurement ReadAstm(const std::string& path, const ReadOptions& options);
+bool SniffAstm(std::string_view head, int64_t file_size);
+
+Measurement ReadPbrtBrdf(const std::string& path, const ReadOptions& options);
+bool SniffPbrtBrdf(std::string_view head, int64_t file_size);
+
+Measurement ReadZemax(const std::string& path, const ReadOptions& options);
+bool SniffZemax(std::string_view head, int64_t file_size);
+
+}  // namespace brdf

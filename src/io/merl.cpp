@@ -1,0 +1,221 @@
+#include "io/merl.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "core/text.h"
+
+static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
+              "the MERL reader copies little-endian bytes directly");
+
+namespace brdf {
+namespace {
+
+constexpr double kHalfPi = 0.5 * kPi;
+constexpr int32_t kDimensions[3] = {MerlTable::kThetaHalfBins, MerlTable::kThetaDiffBins,
+                                    MerlTable::kPhiDiffBins};
+// A sample counts as lying on the grid when its angles are this close to a cell centre.
+constexpr double kOnGridTolerance = 1e-6;
+
+int ClampIndex(int index, int bins) { return std::clamp(index, 0, bins - 1); }
+
+}  // namespace
+
+const Rgb MerlTable::kScale(1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0);
+
+MerlTable::MerlTable() : raw_(3 * kCells, -1.0) {}
+
+int MerlTable::ThetaHalfIndex(double theta_h) {
+  if (theta_h <= 0.0) return 0;
+  return ClampIndex(static_cast<int>(std::sqrt(theta_h / kHalfPi) * kThetaHalfBins),
+                    kThetaHalfBins);
+}
+
+int MerlTable::ThetaDiffIndex(double theta_d) {
+  return ClampIndex(static_cast<int>(theta_d / kHalfPi * kThetaDiffBins), kThetaDiffBins);
+}
+
+int MerlTable::PhiDiffIndex(double phi_d) {
+  // Reciprocity for isotropic materials: phi_d and phi_d + pi are the same configuration.
+  phi_d = std::fmod(phi_d, kPi);
+  if (phi_d < 0.0) phi_d += kPi;
+  return ClampIndex(static_cast<int>(phi_d / kPi * kPhiDiffBins), kPhiDiffBins);
+}
+
+int64_t MerlTable::CellIndex(int theta_h_index, int theta_diff_index, int phi_diff_index) {
+  return phi_diff_index +
+         int64_t{kPhiDiffBins} * (theta_diff_index + int64_t{kThetaDiffBins} * theta_h_index);
+}
+
+HalfDiff MerlTable::CellCentre(int theta_h_index, int theta_diff_index, int phi_diff_index) {
+  HalfDiff hd;
+  const double u = (theta_h_index + 0.5) / kThetaHalfBins;
+  hd.theta_h = u * u * kHalfPi;  // inverse of the square-root warp
+  hd.phi_h = 0.0;
+  hd.theta_d = (theta_diff_index + 0.5) / kThetaDiffBins * kHalfPi;
+  hd.phi_d = (phi_diff_index + 0.5) / kPhiDiffBins * kPi;
+  return hd;
+}
+
+int64_t MerlTable::CellOf(const Vec3& wi, const Vec3& wo) {
+  const HalfDiff hd = ToHalfDiff(wi, wo);
+  return CellIndex(ThetaHalfIndex(hd.theta_h), ThetaDiffIndex(hd.theta_d),
+                   PhiDiffIndex(hd.phi_d));
+}
+
+Rgb MerlTable::Lookup(const Vec3& wi, const Vec3& wo) const {
+  const int64_t cell = CellOf(wi, wo);
+  Rgb value;
+  for (int c = 0; c < 3; ++c) {
+    const double stored = raw(c, cell);
+    value[c] = stored < 0.0 ? std::numeric_limits<double>::quiet_NaN() : stored * kScale[c];
+  }
+  return value;
+}
+
+MerlTable MerlTable::Read(const std::string& path) {
+  // ReadFileBytes checks the size before allocating, so a hostile file never drives a large
+  // allocation; a few bytes of slack let the size error below report the true length.
+  const std::string bytes = ReadFileBytes(path, kFileBytes + 8);
+  if (static_cast<int64_t>(bytes.size()) < kHeaderBytes) {
+    throw ByteError(path, static_cast<int64_t>(bytes.size()),
+                    "file ends inside the 12-byte MERL header (three int32 dimensions)");
+  }
+  int32_t dims[3];
+  std::memcpy(dims, bytes.data(), sizeof(dims));
+  for (int k = 0; k < 3; ++k) {
+    if (dims[k] != kDimensions[k]) {
+      throw ByteError(path, 4 * k,
+                      "MERL dimension " + std::to_string(k + 1) + " is " +
+                          std::to_string(dims[k]) + ", expected 90 90 180");
+    }
+  }
+  if (static_cast<int64_t>(bytes.size()) != kFileBytes) {
+    throw ByteError(path, static_cast<int64_t>(bytes.size()),
+                    "dimensions 90x90x180 need " + std::to_string(kFileBytes) +
+                        " bytes, the file has " + std::to_string(bytes.size()) +
+                        (static_cast<int64_t>(bytes.size()) < kFileBytes ? " (truncated)"
+                                                                         : ""));
+  }
+  MerlTable table;
+  std::memcpy(table.raw_.data(), bytes.data() + kHeaderBytes, table.raw_.size() * 8);
+  for (size_t k = 0; k < table.raw_.size(); ++k) {
+    if (!std::isfinite(table.raw_[k])) {
+      throw ByteError(path, kHeaderBytes + 8 * static_cast<int64_t>(k),
+                      "value is NaN or infinite, expected a finite BRDF value (negative for "
+                      "missing)");
+    }
+  }
+  return table;
+}
+
+void MerlTable::Write(const std::string& path) const {
+  WriteFileAtomically(
+      path,
+      [&](std::ostream& out) {
+        out.write(reinterpret_cast<const char*>(kDimensions), sizeof(kDimensions));
+        out.write(reinterpret_cast<const char*>(raw_.data()),
+                  static_cast<std::streamsize>(raw_.size() * sizeof(double)));
+      },
+      /*binary=*/true);
+}
+
+Measurement MerlTable::ToMeasurement() const {
+  Measurement measurement;
+  measurement.samples.resize(kCells);
+  tbb::parallel_for(0, kThetaHalfBins, [&](int theta_h_index) {
+    for (int theta_diff_index = 0; theta_diff_index < kThetaDiffBins; ++theta_diff_index) {
+      for (int phi_diff_index = 0; phi_diff_index < kPhiDiffBins; ++phi_diff_index) {
+        const int64_t cell = CellIndex(theta_h_index, theta_diff_index, phi_diff_index);
+        Sample& sample = measurement.samples[cell];
+        FromHalfDiff(CellCentre(theta_h_index, theta_diff_index, phi_diff_index), &sample.wi,
+                     &sample.wo);
+        bool missing = sample.wi.z() <= 0.0 || sample.wo.z() <= 0.0;
+        for (int c = 0; c < 3; ++c) {
+          const double stored = raw(c, cell);
+          missing = missing || stored < 0.0;
+          sample.value[c] = stored * kScale[c];
+        }
+        sample.missing = missing;
+      }
+    }
+  });
+  measurement.metadata["units"] = "BRDF in sr^-1 (stored values times 1/1500, 1.15/1500, 1.66/1500)";
+  measurement.metadata["grid"] =
+      "MERL 90x90x180 (theta_h sqrt-warped, theta_d, phi_d in [0, pi)); one sample per cell "
+      "centre, phi_h = 0";
+  measurement.metadata["missing"] =
+      "cells with a negative stored value, or whose centre lies below the horizon";
+  return measurement;
+}
+
+MerlTable MerlTable::FromMeasurement(const Measurement& measurement, WriteReport* report) {
+  std::vector<Rgb> sum(kCells, Rgb::Zero());
+  std::vector<int> count(kCells, 0);
+  size_t off_centre = 0, used = 0;
+  for (const Sample& sample : measurement.samples) {
+    if (sample.missing || sample.wi.z() <= 0.0 || sample.wo.z() <= 0.0) continue;
+    if (!sample.value.isFinite().all()) continue;
+    const HalfDiff hd = ToHalfDiff(sample.wi, sample.wo);
+    const int h = ThetaHalfIndex(hd.theta_h), d = ThetaDiffIndex(hd.theta_d),
+              p = PhiDiffIndex(hd.phi_d);
+    const HalfDiff centre = CellCentre(h, d, p);
+    const double phi_d_folded = std::fmod(hd.phi_d, kPi);
+    if (std::abs(hd.theta_h - centre.theta_h) > kOnGridTolerance ||
+        std::abs(hd.theta_d - centre.theta_d) > kOnGridTolerance ||
+        std::abs(phi_d_folded - centre.phi_d) > kOnGridTolerance) {
+      ++off_centre;
+    }
+    const int64_t cell = CellIndex(h, d, p);
+    sum[cell] += sample.value;
+    ++count[cell];
+    ++used;
+  }
+  MerlTable table;
+  int64_t empty = 0;
+  for (int64_t cell = 0; cell < kCells; ++cell) {
+    if (count[cell] == 0) {
+      ++empty;
+      continue;
+    }
+    for (int c = 0; c < 3; ++c) table.raw(c, cell) = sum[cell][c] / count[cell] / kScale[c];
+  }
+  if (report != nullptr) {
+    if (off_centre > 0) {
+      report->warnings.push_back(std::to_string(off_centre) + " of " + std::to_string(used) +
+                                 " samples are not at MERL cell centres and were binned "
+                                 "(averaged per cell)");
+    }
+    if (empty > 0) {
+      report->warnings.push_back(std::to_string(empty) + " of " + std::to_string(kCells) +
+                                 " cells have no sample and are written as missing (-1)");
+    }
+  }
+  return table;
+}
+
+bool SniffMerl(std::string_view head, int64_t file_size) {
+  if (head.size() < MerlTable::kHeaderBytes || file_size != MerlTable::kFileBytes) return false;
+  int32_t dims[3];
+  std::memcpy(dims, head.data(), sizeof(dims));
+  return dims[0] == kDimensions[0] && dims[1] == kDimensions[1] && dims[2] == kDimensions[2];
+}
+
+Measurement ReadMerl(const std::string& path, const ReadOptions&) {
+  return MerlTable::Read(path).ToMeasurement();
+}
+
+WriteReport WriteMerl(const Measurement& measurement, const std::string& path) {
+  WriteReport report;
+  MerlTable::FromMeasurement(measurement, &report).Write(path);
+  return report;
+}
+
+}  // namespace brdf

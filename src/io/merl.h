@@ -1,0 +1,65 @@
+// The MERL isotropic BRDF table (Matusik et al., "A Data-Driven Reflectance Model", TOG 22(3),
+// 2003): three little-endian int32 dimensions (90, 90, 180), then 90*90*180 doubles per channel
+// (all red, then green, then blue), indexed by (theta_h, theta_d, phi_d) with phi_d fastest.
+// Stored values times 1/1500, 1.15/1500, 1.66/1500 give the BRDF in sr^-1; negative values
+// mark missing samples. theta_h is sampled non-linearly: index = sqrt(theta_h / (pi/2)) * 90,
+// denser near the specular peak; phi_d covers [0, pi) because reciprocity makes f(phi_d) =
+// f(phi_d + pi) for an isotropic material.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/angles.h"
+#include "core/measurement.h"
+#include "io/formats.h"
+
+namespace brdf {
+
+class MerlTable {
+ public:
+  static constexpr int kThetaHalfBins = 90;
+  static constexpr int kThetaDiffBins = 90;
+  static constexpr int kPhiDiffBins = 180;
+  static constexpr int64_t kCells = int64_t{kThetaHalfBins} * kThetaDiffBins * kPhiDiffBins;
+  static constexpr int64_t kHeaderBytes = 12;
+  static constexpr int64_t kFileBytes = kHeaderBytes + kCells * 3 * 8;  // 34,992,012
+  // Raw value * scale = BRDF in sr^-1, per channel (MERL's BRDFRead.cpp constants).
+  static const Rgb kScale;
+
+  // A table with every cell missing.
+  MerlTable();
+
+  // Reads and validates a file: exact size for the dimensions, dimensions 90 90 180, finite
+  // values. Throws ByteError naming the offset of the first problem.
+  static MerlTable Read(const std::string& path);
+  // Writes the table atomically (temporary file, then rename).
+  void Write(const std::string& path) const;
+
+  // Bins a measurement's present, above-horizon samples into cells (mean per cell); cells with
+  // no sample stay missing. Warnings say how many samples were off the cell centres and how
+  // many cells are empty.
+  static MerlTable FromMeasurement(const Measurement& measurement, WriteReport* report);
+  // One sample per cell at the cell centre, phi_h = 0. Cells with a negative value, or whose
+  // centre directions fall at or below the horizon, are flagged missing.
+  Measurement ToMeasurement() const;
+
+  static int ThetaHalfIndex(double theta_h);
+  static int ThetaDiffIndex(double theta_d);
+  static int PhiDiffIndex(double phi_d);  // folds phi_d into [0, pi)
+  static int64_t CellIndex(int theta_h_index, int theta_diff_index, int phi_diff_index);
+  static HalfDiff CellCentre(int theta_h_index, int theta_diff_index, int phi_diff_index);
+  static int64_t CellOf(const Vec3& wi, const Vec3& wo);
+
+  // Stored (unscaled) value of a cell; negative means missing.
+  double raw(int channel, int64_t cell) const { return raw_[channel * kCells + cell]; }
+  double& raw(int channel, int64_t cell) { return raw_[channel * kCells + cell]; }
+  // BRDF (sr^-1) in the cell containing (wi, wo); NaN where the cell is missing.
+  Rgb Lookup(const Vec3& wi, const Vec3& wo) const;
+
+ private:
+  std::vector<double> raw_;  // 3 * kCells, channel-major as in the file
+};
+
+}  // namespace brdf

@@ -1,0 +1,47 @@
+// blinn-phong: f = rho_d/pi + rho_s (m+8)/(8 pi) cos^m(theta_h), theta_h = angle between the
+// half vector and the normal: the "energy-conserving Blinn-Phong" of real-time rendering
+// (Akenine-Möller, Haines & Hoffman, Real-Time Rendering, 3rd ed., §7.6).
+//
+// Parameters: rho_d (RGB, default 0.5), rho_s (RGB, default 0.04), m (exponent, default 100).
+// Example: `blinn-phong:rho_d=0.5,0.1,0.1:rho_s=0.04:m=200`.
+//
+// (m+8)/(8 pi) is an approximation. The exact normal-incidence lobe albedo is
+//   A(m) = rho_s (m+8)(2^(-m/2) + m) / ((m+2)(m+4))
+// (see blinn_phong_exact.h for the integral), which peaks at 1.0752 rho_s near m = 8.8, so an
+// energy constraint must use that true maximum, not rho_d + rho_s <= 1. The radiometry lecture
+// this product grew from prints the factor as (m+8)/pi: eight times too large, an albedo of
+// about 8 at normal incidence, which `brdf energy` exposes (rho_s = 8 reproduces it).
+#pragma once
+
+#include "models/common.h"
+
+namespace brdf::models {
+
+struct BlinnPhong : LobedSlots {
+  static constexpr const char* kName = "blinn-phong";
+
+  template <typename T>
+  static RgbT<T> Eval(const T* params, const Vec3T<T>& wi, const Vec3T<T>& wo) {
+    if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
+    const T& m = params[kExponent];
+    const T lobe = (m + T(8)) * T(0.125 * kInvPi) * ClampedPow(CosThetaHalf(wi, wo), m);
+    return LoadRgb(params, kRhoD) * T(kInvPi) + LoadRgb(params, kRhoS) * lobe;
+  }
+
+  // cos(theta_h) = z-component of normalize(wi + wo).
+  template <typename T>
+  static T CosThetaHalf(const Vec3T<T>& wi, const Vec3T<T>& wo) {
+    using std::sqrt;
+    const Vec3T<T> sum = wi + wo;
+    const T norm_squared = sum.squaredNorm();
+    if (norm_squared <= T(0)) return T(0);
+    return sum.z() / sqrt(norm_squared);
+  }
+};
+
+// Normal-incidence lobe albedo of blinn-phong per unit rho_s (the closed form above).
+inline double BlinnPhongNormalAlbedo(double m) {
+  return (m + 8.0) * (std::pow(2.0, -m / 2.0) + m) / ((m + 2.0) * (m + 4.0));
+}
+
+}  // namespace brdf::models

@@ -1,0 +1,34 @@
+// blinn-phong-exact: f = rho_d/pi + rho_s (m+2)(m+4) / (8 pi (2^(-m/2) + m)) cos^m(theta_h).
+//
+// Parameters: rho_d (RGB, default 0.5), rho_s (RGB, default 0.04), m (exponent, default 100).
+// Example: `blinn-phong-exact:rho_d=0.2:rho_s=0.5:m=1000`.
+//
+// Why this factor: at normal incidence h = normalize(n + wo) makes theta_h = theta_o / 2, so
+//   ∫ cos^m(theta_h) cos(theta_o) dω = 2π ∫0^{π/2} cos^m(θ/2) cosθ sinθ dθ
+//                                    = 8π (2^(-m/2) + m) / ((m+2)(m+4))
+// (substitute u = cos(θ/2), cosθ = 2u²-1, sinθ dθ = 4u du, integrate u from 1/√2 to 1).
+// Dividing by it makes the normal-incidence lobe albedo exactly rho_s, so, as for phong,
+// rho_d + rho_s <= 1 bounds the albedo at normal incidence exactly.
+#pragma once
+
+#include "models/common.h"
+#include "models/blinn_phong.h"
+
+namespace brdf::models {
+
+struct BlinnPhongExact : LobedSlots {
+  static constexpr const char* kName = "blinn-phong-exact";
+
+  template <typename T>
+  static RgbT<T> Eval(const T* params, const Vec3T<T>& wi, const Vec3T<T>& wo) {
+    using std::pow;
+    if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
+    const T& m = params[kExponent];
+    const T normalization =
+        (m + T(2)) * (m + T(4)) / (T(8 * kPi) * (pow(T(2), -m / T(2)) + m));
+    const T lobe = normalization * ClampedPow(BlinnPhong::CosThetaHalf(wi, wo), m);
+    return LoadRgb(params, kRhoD) * T(kInvPi) + LoadRgb(params, kRhoS) * lobe;
+  }
+};
+
+}  // namespace brdf::models

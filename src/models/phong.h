@@ -1,0 +1,30 @@
+// phong: f = rho_d/pi + rho_s (n+2)/(2 pi) cos^n(alpha), alpha = angle between wo and the
+// mirror direction of wi (the modified Phong model of Lafortune & Willems 1994).
+//
+// Parameters: rho_d (RGB, default 0.5), rho_s (RGB, default 0.04), n (exponent, default 100).
+// Example: `phong:rho_d=0.3:rho_s=0.2:n=50`.
+//
+// Why (n+2)/(2 pi): at normal incidence the mirror direction is the normal, alpha = theta_o,
+// and the lobe albedo is rho_s (n+2)/(2 pi) * 2 pi ∫0^{pi/2} cos^{n+1}θ sinθ dθ = rho_s exactly.
+// At oblique incidence part of the lobe falls below the horizon, so the albedo is smaller:
+// rho_d + rho_s <= 1 is the exact energy condition.
+#pragma once
+
+#include "models/common.h"
+
+namespace brdf::models {
+
+struct Phong : LobedSlots {
+  static constexpr const char* kName = "phong";
+
+  template <typename T>
+  static RgbT<T> Eval(const T* params, const Vec3T<T>& wi, const Vec3T<T>& wo) {
+    if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
+    const T& n = params[kExponent];
+    const T cos_alpha = MirrorDirection(wi).dot(wo);
+    const T lobe = (n + T(2)) * T(0.5 * kInvPi) * ClampedPow(cos_alpha, n);
+    return LoadRgb(params, kRhoD) * T(kInvPi) + LoadRgb(params, kRhoS) * lobe;
+  }
+};
+
+}  // namespace brdf::models

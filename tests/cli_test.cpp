@@ -1,0 +1,139 @@
+// The command line as a user meets it: info (text and JSON), convert, demo, and hostile input
+// giving exit status 2 with one line naming the file, and no output file.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "test_util.h"
+
+namespace brdf {
+namespace {
+
+using testing::DataPath;
+using testing::RunBrdf;
+using testing::ScratchDir;
+
+int CountLines(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST(Cli, HelpDocumentsEveryCommand) {
+  const testing::CommandResult result = RunBrdf("--help");
+  EXPECT_EQ(result.exit_status, 0);
+  for (const char* command : {"demo", "info", "convert"}) {
+    EXPECT_NE(result.out.find(command), std::string::npos) << command;
+    EXPECT_EQ(RunBrdf(std::string(command) + " --help").exit_status, 0) << command;
+  }
+}
+
+TEST(Cli, UnknownCommandIsUsageError) {
+  EXPECT_EQ(RunBrdf("frobnicate").exit_status, 2);
+  EXPECT_EQ(RunBrdf("info").exit_status, 2);  // FILE is required
+}
+
+TEST(Cli, InfoJsonOnRealCornellFile) {
+  const testing::CommandResult result =
+      RunBrdf("info --json '" + DataPath("cornell-astm/cayman.astm") + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const nlohmann::json json = nlohmann::json::parse(result.out);
+  EXPECT_EQ(json["format"], "astm");
+  EXPECT_EQ(json["samples"], 1439);
+  EXPECT_EQ(json["missing"], 0);
+  EXPECT_EQ(json["sample"], "Cayman Metallic");
+  // The first row of the file has theta_i = 0.872665 rad = 50.0000 deg; all incidences lie
+  // in [0, 90).
+  EXPECT_LE(json["theta_i_deg"][1].get<double>(), 90.0);
+  EXPECT_GE(json["theta_i_deg"][1].get<double>(), 50.0);
+  for (const char* key : {"format", "samples", "theta_i_deg", "theta_o_deg", "min", "max",
+                          "missing", "negative", "nan", "incidence_directions"}) {
+    EXPECT_TRUE(json.contains(key)) << key;
+  }
+}
+
+TEST(Cli, InfoTextOnZemax) {
+  const testing::CommandResult result =
+      RunBrdf("info '" + DataPath("zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf") + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_NE(result.out.find("zemax"), std::string::npos);
+  EXPECT_NE(result.out.find("2717"), std::string::npos);  // 13 x 19 x 11 cells
+}
+
+TEST(Cli, ConvertAstmToCsvAndBack) {
+  ScratchDir dir;
+  const std::string csv = dir.File("cayman.csv");
+  const testing::CommandResult convert =
+      RunBrdf("convert '" + DataPath("cornell-astm/cayman.astm") + "' '" + csv + "'");
+  ASSERT_EQ(convert.exit_status, 0) << convert.err;
+  const testing::CommandResult info = RunBrdf("info --json '" + csv + "'");
+  ASSERT_EQ(info.exit_status, 0) << info.err;
+  const nlohmann::json json = nlohmann::json::parse(info.out);
+  EXPECT_EQ(json["format"], "native-csv");
+  EXPECT_EQ(json["samples"], 1439);
+  EXPECT_EQ(json["metadata"]["converted_from"], "astm");
+  EXPECT_EQ(json["metadata"]["illuminant"], "D65");
+}
+
+TEST(Cli, HostileInputExitsTwoWithOneLineAndNoOutput) {
+  ScratchDir dir;
+  const std::string out = dir.File("out.csv");
+  const std::vector<std::pair<std::string, std::string>> inputs = {
+      {"empty.astm", ""},
+      {"garbage.csv", "hello, world\n"},
+      {"truncated.brdf", "# num wls\n3\n400 500 600\n0.1 0.0 0.2 0.0 1 2\n"},
+      {"nan.csv", "# brdfkit measurement v1\ntheta_i,phi_i,theta_o,phi_o,r,g,b\n1,0,2,0,NaN,1,1\n"},
+      {"dims.binary", std::string("\x5a\0\0\0\x5a\0\0\0\x5a\0\0\0", 12)},
+  };
+  for (const auto& [name, contents] : inputs) {
+    const std::string path = dir.Write(name, contents);
+    for (const std::string& command : {"info '" + path + "'",
+                                       "convert '" + path + "' '" + out + "'"}) {
+      const testing::CommandResult result = RunBrdf(command);
+      EXPECT_EQ(result.exit_status, 2) << command << "\n" << result.err;
+      EXPECT_EQ(CountLines(result.err), 1) << command << "\n" << result.err;
+      EXPECT_NE(result.err.find(path), std::string::npos) << result.err;
+      EXPECT_TRUE(result.err.find("line") != std::string::npos ||
+                  result.err.find("byte") != std::string::npos)
+          << result.err;
+    }
+  }
+  // Nothing was written: not the output, not a temporary.
+  EXPECT_EQ(dir.CountEntries(), static_cast<int>(inputs.size()));
+}
+
+TEST(Cli, DirectoryAndMissingFileAreInputErrors) {
+  ScratchDir dir;
+  testing::CommandResult result = RunBrdf("info '" + dir.path() + "'");
+  EXPECT_EQ(result.exit_status, 2);
+  EXPECT_NE(result.err.find("directory"), std::string::npos) << result.err;
+  result = RunBrdf("info '" + dir.File("nope.csv") + "'");
+  EXPECT_EQ(result.exit_status, 2);
+  EXPECT_NE(result.err.find("nope.csv"), std::string::npos) << result.err;
+}
+
+TEST(Cli, UnwritableOutputIsAnErrorAndLosesNothing) {
+  ScratchDir dir;
+  const testing::CommandResult result =
+      RunBrdf("convert '" + DataPath("cornell-astm/cayman.astm") + "' '" + dir.path() +
+              "/no/such/dir/out.csv'");
+  EXPECT_EQ(result.exit_status, 2) << result.err;
+  EXPECT_EQ(CountLines(result.err), 1) << result.err;
+  EXPECT_EQ(dir.CountEntries(), 0);
+}
+
+TEST(Cli, DemoSummarizesEveryBundledMeasurement) {
+  ScratchDir dir;
+  const testing::CommandResult result = RunBrdf("demo --quiet --out '" + dir.path() + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_NE(result.out.find("cayman"), std::string::npos);
+  EXPECT_NE(result.out.find("zemax"), std::string::npos);
+  std::ifstream stream(dir.File("summary.json"));
+  const nlohmann::json json = nlohmann::json::parse(stream);
+  // data/ holds 4 ASTM, 5 pbrt-v2 and 1 Zemax file.
+  EXPECT_EQ(json["measurements"].size(), 10u);
+  for (const nlohmann::json& row : json["measurements"]) EXPECT_GT(row["samples"], 0);
+}
+
+}  // namespace
+}  // namespace brdf

@@ -1,0 +1,169 @@
+// MERL table: analytic write/read, the non-linear theta_h index, bit-exact copy, hostile files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "core/errors.h"
+#include "io/formats.h"
+#include "io/merl.h"
+#include "models/model_string.h"
+#include "test_util.h"
+
+namespace brdf {
+namespace {
+
+using testing::ScratchDir;
+
+// Samples at every MERL cell centre whose directions are above the horizon, valued by `model`.
+Measurement TabulateOnGrid(const Model& model) {
+  Measurement measurement;
+  for (int h = 0; h < MerlTable::kThetaHalfBins; ++h) {
+    for (int d = 0; d < MerlTable::kThetaDiffBins; ++d) {
+      for (int p = 0; p < MerlTable::kPhiDiffBins; ++p) {
+        Sample sample;
+        FromHalfDiff(MerlTable::CellCentre(h, d, p), &sample.wi, &sample.wo);
+        if (sample.wi.z() <= 0 || sample.wo.z() <= 0) continue;
+        sample.value = model.Eval(sample.wi, sample.wo);
+        measurement.samples.push_back(sample);
+      }
+    }
+  }
+  return measurement;
+}
+
+std::string Slurp(const std::string& path) {
+  std::ifstream stream(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << stream.rdbuf();
+  return buffer.str();
+}
+
+TEST(Merl, FileSizeIsTheDocumentedOne) { EXPECT_EQ(MerlTable::kFileBytes, 34992012); }
+
+TEST(Merl, ThetaHalfIndexIsSquareRootWarped) {
+  // index = floor(sqrt(theta_h / (pi/2)) * 90): 0.3 rad -> sqrt(0.190986) * 90 = 39.33 -> 39,
+  // whereas a linear index would give floor(0.3 / (pi/2) * 90) = 17.
+  EXPECT_EQ(MerlTable::ThetaHalfIndex(0.3), 39);
+  EXPECT_EQ(MerlTable::ThetaHalfIndex(0.0), 0);
+  EXPECT_EQ(MerlTable::ThetaHalfIndex(kPi / 2), 89);  // clamped
+  // Bin k spans [(k/90)^2, ((k+1)/90)^2) * pi/2: its centre maps back to k.
+  for (int k = 0; k < 90; ++k) {
+    EXPECT_EQ(MerlTable::ThetaHalfIndex(MerlTable::CellCentre(k, 0, 0).theta_h), k);
+  }
+  EXPECT_EQ(MerlTable::ThetaDiffIndex(0.5), 28);   // 0.5 / (pi/2) * 90 = 28.65
+  EXPECT_EQ(MerlTable::PhiDiffIndex(1.0), 57);     // 1.0 / pi * 180 = 57.3
+  EXPECT_EQ(MerlTable::PhiDiffIndex(1.0 + kPi), 57);  // reciprocity fold
+}
+
+TEST(Merl, LookupLandsInTheRightCell) {
+  MerlTable table;
+  for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) {
+    for (int c = 0; c < 3; ++c) table.raw(c, cell) = static_cast<double>(cell) + c * 0.25;
+  }
+  HalfDiff hd;
+  hd.theta_h = 0.3;
+  hd.phi_h = 1.1;  // isotropic: phi_h must not matter
+  hd.theta_d = 0.5;
+  hd.phi_d = 1.0;
+  Vec3 wi, wo;
+  FromHalfDiff(hd, &wi, &wo);
+  const int64_t expected_cell = 57 + 180 * (28 + 90 * int64_t{39});
+  EXPECT_EQ(MerlTable::CellOf(wi, wo), expected_cell);
+  const Rgb value = table.Lookup(wi, wo);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_DOUBLE_EQ(value[c], (expected_cell + c * 0.25) * MerlTable::kScale[c]);
+  }
+}
+
+TEST(Merl, AnalyticTableSurvivesWriteAndRead) {
+  ScratchDir dir;
+  const Model model = ParseModel("blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.5:m=50");
+  const Measurement grid = TabulateOnGrid(model);
+  const std::string path = dir.File("analytic.binary");
+  const WriteReport report = WriteMeasurement(grid, path);
+  // On-grid data is not binned; only the below-horizon cells are empty.
+  for (const std::string& warning : report.warnings) {
+    EXPECT_EQ(warning.find("not at MERL cell centres"), std::string::npos) << warning;
+  }
+  const Measurement read = ReadMeasurement(path);
+  EXPECT_EQ(read.format, "merl");
+  ASSERT_EQ(read.samples.size(), static_cast<size_t>(MerlTable::kCells));
+  size_t present = 0;
+  for (const Sample& sample : read.samples) {
+    if (sample.missing) continue;
+    ++present;
+    const Rgb expected = model.Eval(sample.wi, sample.wo);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(sample.value[c], expected[c], 1e-12 * expected[c]);
+  }
+  EXPECT_EQ(present, grid.samples.size());
+}
+
+TEST(Merl, NegativeValuesAreMissingNotData) {
+  ScratchDir dir;
+  MerlTable table;  // all -1
+  const int64_t cell = MerlTable::CellIndex(10, 20, 30);
+  for (int c = 0; c < 3; ++c) table.raw(c, cell) = 750.0;
+  const std::string path = dir.File("sparse.binary");
+  table.Write(path);
+  const Measurement read = ReadMeasurement(path);
+  const MeasurementSummary summary = Summarize(read);
+  EXPECT_EQ(summary.missing, static_cast<size_t>(MerlTable::kCells - 1));
+  EXPECT_EQ(summary.negative, 0u);
+  EXPECT_DOUBLE_EQ(summary.max[0], 0.5);          // 750 / 1500
+  EXPECT_DOUBLE_EQ(summary.max[2], 750 * 1.66 / 1500);
+}
+
+TEST(Merl, ConvertMerlToMerlIsBitExact) {
+  ScratchDir dir;
+  MerlTable table;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> uniform(-0.5, 3000.0);
+  for (int c = 0; c < 3; ++c) {
+    for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) table.raw(c, cell) = uniform(random);
+  }
+  const std::string original = dir.File("a.binary"), copy = dir.File("b.binary");
+  table.Write(original);
+  const testing::CommandResult result =
+      testing::RunBrdf("convert --quiet '" + original + "' '" + copy + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_TRUE(Slurp(original) == Slurp(copy));
+}
+
+TEST(Merl, HostileFilesNameTheByte) {
+  ScratchDir dir;
+  MerlTable table;
+  const std::string good = dir.File("good.binary");
+  table.Write(good);
+  const std::string bytes = Slurp(good);
+
+  auto expect_error = [&](const std::string& name, const std::string& contents,
+                          const std::string& fragment) {
+    const std::string path = dir.Write(name, contents);
+    try {
+      MerlTable::Read(path);
+      ADD_FAILURE() << name << " was accepted";
+    } catch (const ByteError& error) {
+      EXPECT_NE(std::string(error.what()).find(path), std::string::npos) << error.what();
+      EXPECT_NE(std::string(error.what()).find(fragment), std::string::npos) << error.what();
+    }
+  };
+  expect_error("empty.binary", "", "byte 0");
+  expect_error("short-header.binary", bytes.substr(0, 7), "byte 7");
+  expect_error("truncated.binary", bytes.substr(0, bytes.size() - 5),
+               "byte " + std::to_string(bytes.size() - 5));
+  std::string wrong_dims = bytes;
+  const int32_t forty_five = 45;
+  std::memcpy(wrong_dims.data() + 4, &forty_five, 4);
+  expect_error("dims.binary", wrong_dims, "byte 4");
+  std::string with_nan = bytes;
+  const double nan = std::nan("");
+  std::memcpy(with_nan.data() + 12 + 8 * 1000, &nan, 8);
+  expect_error("nan.binary", with_nan, "byte " + std::to_string(12 + 8 * 1000));
+}
+
+}  // namespace
+}  // namespace brdf

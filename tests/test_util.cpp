@@ -1,0 +1,66 @@
+#include "test_util.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace brdf::testing {
+
+std::string DataPath(const std::string& relative) {
+  return std::string(BRDFKIT_DATA_DIR) + "/" + relative;
+}
+std::string TestPath(const std::string& relative) {
+  return std::string(BRDFKIT_TEST_DIR) + "/" + relative;
+}
+
+ScratchDir::ScratchDir() {
+  std::string pattern = (std::filesystem::temp_directory_path() / "brdfkit-test-XXXXXX").string();
+  if (::mkdtemp(pattern.data()) == nullptr) std::abort();
+  path_ = pattern;
+}
+
+ScratchDir::~ScratchDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+std::string ScratchDir::Write(const std::string& name, const std::string& bytes) const {
+  const std::string file = File(name);
+  std::ofstream(file, std::ios::binary) << bytes;
+  return file;
+}
+
+int ScratchDir::CountEntries() const {
+  int count = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(path_)) ++count;
+  return count;
+}
+
+namespace {
+std::string Slurp(const std::string& path) {
+  std::ifstream stream(path, std::ios::binary);
+  std::stringstream buffer;
+  buffer << stream.rdbuf();
+  return buffer.str();
+}
+}  // namespace
+
+CommandResult RunBrdf(const std::string& arguments) {
+  ScratchDir capture;
+  const std::string command = std::string("'") + BRDFKIT_BINARY + "' " + arguments + " >'" +
+                              capture.File("out") + "' 2>'" + capture.File("err") +
+                              "' </dev/null";
+  const int status = std::system(command.c_str());
+  CommandResult result;
+  if (status != -1 && WIFEXITED(status)) result.exit_status = WEXITSTATUS(status);
+  result.out = Slurp(capture.File("out"));
+  result.err = Slurp(capture.File("err"));
+  return result;
+}
+
+}  // namespace brdf::testing

@@ -1,0 +1,40 @@
+// Helpers shared by the tests: paths to bundled data, scratch directories, and running the
+// `brdf` binary as a user would.
+#pragma once
+
+#include <string>
+
+namespace brdf::testing {
+
+// Path of a file under data/ (the bundled real measurements).
+std::string DataPath(const std::string& relative);
+// Path of a file under tests/ (fixtures and hostile inputs).
+std::string TestPath(const std::string& relative);
+
+// A fresh empty directory, removed with its contents when the object dies.
+class ScratchDir {
+ public:
+  ScratchDir();
+  ~ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const std::string& path() const { return path_; }
+  std::string File(const std::string& name) const { return path_ + "/" + name; }
+  // Writes `bytes` to a file in the directory and returns its path.
+  std::string Write(const std::string& name, const std::string& bytes) const;
+  // Number of entries in the directory (to check that nothing was left behind).
+  int CountEntries() const;
+
+ private:
+  std::string path_;
+};
+
+struct CommandResult {
+  int exit_status = -1;  // -1 when killed by a signal
+  std::string out;       // stdout
+  std::string err;       // stderr
+};
+// Runs the brdf binary with `arguments` (a shell-quoted string), no stdin.
+CommandResult RunBrdf(const std::string& arguments);
+
+}  // namespace brdf::testing
