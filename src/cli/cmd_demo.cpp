@@ -70,6 +70,8 @@ Command AddDemoCommand(CLI::App& parent) {
                           << "\033[K" << std::flush;
               }
               SummaryRow row = SummarizeFile(paths[k]);
+              // Shown relative to the data directory: shorter, and the same on every machine.
+              row.path = std::filesystem::relative(paths[k], options->data).string();
               row.measurement.samples.clear();  // keep the summaries, not the data
               report.push_back(SummaryJson(row));
               rows.push_back(std::move(row));
@@ -80,7 +82,7 @@ Command AddDemoCommand(CLI::App& parent) {
             WriteFileAtomically(summary_path, [&](std::ostream& out) {
               out << nlohmann::json{{"measurements", report}}.dump(2) << "\n";
             });
-            std::cout << "Bundled real measurements (" << rows.size() << " files, from "
+            std::cout << "Bundled real measurements (" << rows.size() << " files in "
                       << options->data << "):\n";
             PrintSummaryTable(std::cout, rows);
             std::cout << "\nwrote " << summary_path << "\n";

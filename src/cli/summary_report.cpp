@@ -69,7 +69,10 @@ void PrintSummary(std::ostream& out, const SummaryRow& row) {
   line("missing", std::to_string(s.missing));
   line("negative", std::to_string(s.negative));
   line("nan", std::to_string(s.nan));
-  for (const auto& [key, value] : row.measurement.metadata) line(("  " + key).c_str(), value);
+  if (!row.measurement.metadata.empty()) out << "metadata\n";
+  for (const auto& [key, value] : row.measurement.metadata) {
+    out << "  " << key << ": " << value << "\n";
+  }
 }
 
 void PrintSummaryTable(std::ostream& out, const std::vector<SummaryRow>& rows) {

@@ -25,7 +25,10 @@ double Theta(const Vec3& w) { return std::atan2(std::hypot(w.x(), w.y()), w.z())
 double Phi(const Vec3& w) {
   if (w.x() == 0.0 && w.y() == 0.0) return 0.0;
   const double phi = std::atan2(w.y(), w.x());
-  return phi < 0.0 ? phi + 2.0 * kPi : phi;
+  if (phi >= 0.0) return phi;
+  // A tiny negative angle plus 2*pi rounds to exactly 2*pi; keep the promise of [0, 2*pi).
+  const double wrapped = phi + 2.0 * kPi;
+  return wrapped < 2.0 * kPi ? wrapped : 0.0;
 }
 
 HalfDiff ToHalfDiff(const Vec3& wi, const Vec3& wo) {

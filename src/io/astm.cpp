@@ -24,8 +24,8 @@ namespace {
 
 constexpr int64_t kMaxAstmBytes = int64_t{1} << 30;
 constexpr const char* kAngleVars[] = {"theta_i", "phi_i", "theta_s", "phi_s"};
-// The shortest possible row, "0,0,0,0,0,0\n" (four angles and two wavelengths): NUM_POINTS may
-// not promise more rows than the file has room for, so a hostile count cannot make us allocate.
+// The shortest possible row, "0,0,0,0,0,0\n" (four angles and two wavelengths), bounds how many
+// rows a file can hold, so that a hostile NUM_POINTS cannot make the reader allocate.
 constexpr int64_t kMinRowBytes = 12;
 
 // ASTM header keys and the metadata keys they become (DESIGN §4).
@@ -34,8 +34,8 @@ struct HeaderKey {
   const char* metadata;
 };
 constexpr HeaderKey kHeaderKeys[] = {
-    {"SAMPLE_NAME", "sample"},   {"SAMPLE_TYPE", "sample_type"},  {"LAB_NAME", "lab"},
-    {"SYSTEM_NAME", "instrument"}, {"LAB_OPERATOR", "operator"}, {"LAB_COMMENTS", "comments"},
+    {"SAMPLE_NAME", "sample"},     {"SAMPLE_TYPE", "sample_type"}, {"LAB_NAME", "lab"},
+    {"SYSTEM_NAME", "instrument"}, {"LAB_OPERATOR", "operator"},   {"LAB_COMMENTS", "comments"},
 };
 
 bool IsHeaderLine(std::string_view line) {
@@ -55,8 +55,10 @@ Vars ParseVars(const LineReader& reader, std::string_view value) {
   bool angles_first = vars.names.size() > angles;
   for (size_t k = 0; k < angles && angles_first; ++k) angles_first = vars.names[k] == kAngleVars[k];
   if (!angles_first) {
-    reader.Fail("VARS must begin with theta_i,phi_i,theta_s,phi_s (radians) and list the "
-                "wavelengths after them, found '" + std::string(value.substr(0, 60)) + "'");
+    reader.Fail(
+        "VARS must begin with theta_i,phi_i,theta_s,phi_s (radians) and list the "
+        "wavelengths after them, found '" +
+        std::string(value.substr(0, 60)) + "'");
   }
   for (size_t k = angles; k < vars.names.size(); ++k) {
     std::string_view name = vars.names[k];
@@ -65,9 +67,14 @@ Vars ParseVars(const LineReader& reader, std::string_view value) {
                   "' is not a wavelength such as '400nm'");
     }
     name.remove_suffix(2);
-    vars.wavelengths_nm.push_back(ParseNumber(reader, name, "a VARS wavelength (nm)"));
+    const double wavelength_nm = ParseNumber(reader, name, "a VARS wavelength (nm)");
+    CheckNextWavelength(reader, vars.wavelengths_nm, wavelength_nm);
+    vars.wavelengths_nm.push_back(wavelength_nm);
   }
-  CheckWavelengths(reader.path(), reader.line_number(), vars.wavelengths_nm);
+  if (static_cast<int64_t>(vars.wavelengths_nm.size()) < kMinWavelengths) {
+    reader.Fail("VARS lists " + std::to_string(vars.wavelengths_nm.size()) +
+                " wavelengths, a spectrum needs at least " + std::to_string(kMinWavelengths));
+  }
   return vars;
 }
 
@@ -111,11 +118,11 @@ Measurement ReadAstm(const std::string& path, const ReadOptions& options) {
       if (key == "NUM_POINTS") {
         if (num_points >= 0) reader.Fail("second NUM_POINTS line");
         num_points = ParseCount(reader, value, "NUM_POINTS", std::numeric_limits<int64_t>::max());
-        const int64_t room = static_cast<int64_t>(text.size()) / kMinRowBytes;
         if (num_points == 0) reader.Fail("NUM_POINTS is 0: the file holds no data");
-        if (num_points > room) {
-          reader.Fail("NUM_POINTS " + std::to_string(num_points) + " is more rows than a file of " +
-                      std::to_string(text.size()) + " bytes can hold");
+        if (num_points > kMaxAstmBytes / kMinRowBytes) {
+          reader.Fail("NUM_POINTS " + std::to_string(num_points) + " is more rows than any file " +
+                      "brdfkit reads (at most " + std::to_string(kMaxAstmBytes) +
+                      " bytes) can hold");
         }
       } else if (key == "VARS") {
         Vars vars = ParseVars(reader, value);
@@ -128,7 +135,11 @@ Measurement ReadAstm(const std::string& path, const ReadOptions& options) {
       continue;
     }
     if (num_points < 0) reader.Fail("data before the NUM_POINTS header line");
-    if (rows == 0) measurement.samples.reserve(static_cast<size_t>(num_points));
+    if (rows == 0) {
+      // A truncated file promises more rows than it holds: reserve no more than fit in it.
+      const int64_t room = static_cast<int64_t>(text.size()) / kMinRowBytes;
+      measurement.samples.reserve(static_cast<size_t>(std::min(num_points, room)));
+    }
     if (rows == num_points) {
       reader.Fail("more data rows than NUM_POINTS " + std::to_string(num_points) + " promises");
     }
@@ -148,7 +159,7 @@ Measurement ReadAstm(const std::string& path, const ReadOptions& options) {
   if (num_points < 0) reader.Fail("no NUM_POINTS header line: not an ASTM E1392 file?");
   if (!records) reader.Fail("no VARS header line: the columns are unknown");
   if (rows != num_points) {
-    reader.Fail("expected " + std::to_string(num_points) + " data rows (NUM_POINTS), found " +
+    reader.Fail("expected " + std::to_string(num_points) + " data rows, found " +
                 std::to_string(rows) + " (truncated?)");
   }
   records->Describe(&measurement);

@@ -64,7 +64,7 @@ Measurement ReadPbrtBrdf(const std::string& path, const ReadOptions& options) {
   std::vector<double> wavelengths_nm;
   std::optional<SpectralRecords> records;  // once the wavelengths are known
   std::vector<double> record;
-  int64_t record_line = 0;          // where the current record starts
+  int64_t record_line = 0;           // where the current record starts
   size_t record_values_on_line = 0;  // how many of its values are on that line
   std::string_view line;
   while (reader.Next(&line)) {
@@ -81,14 +81,15 @@ Measurement ReadPbrtBrdf(const std::string& path, const ReadOptions& options) {
       if (wavelength_count < 0) {
         wavelength_count =
             ParseCount(reader, fields[f], "the number of wavelengths", kMaxWavelengths);
-        if (wavelength_count < 2) {
+        if (wavelength_count < kMinWavelengths) {
           reader.Fail("the number of wavelengths is " + std::to_string(wavelength_count) +
-                      ", expected at least 2 for a spectrum");
+                      ", a spectrum needs at least " + std::to_string(kMinWavelengths));
         }
       } else if (!records) {
-        wavelengths_nm.push_back(ParseNumber(reader, fields[f], "a wavelength (nm)"));
+        const double wavelength_nm = ParseNumber(reader, fields[f], "a wavelength (nm)");
+        CheckNextWavelength(reader, wavelengths_nm, wavelength_nm);
+        wavelengths_nm.push_back(wavelength_nm);
         if (static_cast<int64_t>(wavelengths_nm.size()) == wavelength_count) {
-          CheckWavelengths(path, reader.line_number(), wavelengths_nm);
           records.emplace(wavelengths_nm, options.illuminant);
         }
       } else {
@@ -99,16 +100,15 @@ Measurement ReadPbrtBrdf(const std::string& path, const ReadOptions& options) {
         record.push_back(ParseNumber(reader, fields[f], RecordFieldName(record.size())));
         if (record.size() < records->record_size()) continue;
         const std::string record_shape = std::to_string(records->record_size()) +
-                                         " values (4 angles + " +
-                                         std::to_string(wavelength_count) + " spectral)";
+                                         " values (4 angles + " + std::to_string(wavelength_count) +
+                                         " spectral)";
         if (f + 1 < fields.size() && record_line == reader.line_number()) {
           reader.Fail("line holds " + std::to_string(fields.size()) + " values, a record holds " +
                       record_shape);
         }
         if (f + 1 < fields.size()) {
           throw ParseError(path, record_line,
-                           "the record starting here has " +
-                               std::to_string(record_values_on_line) +
+                           "the record starting here has " + std::to_string(record_values_on_line) +
                                " values on this line and ends in the middle of line " +
                                std::to_string(reader.line_number()) + ": a record holds " +
                                record_shape + " and starts on a new line");

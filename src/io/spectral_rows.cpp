@@ -43,26 +43,15 @@ double CheckedPhi(const std::string& path, int64_t line, const char* name, doubl
 
 }  // namespace
 
-void CheckWavelengths(const std::string& path, int64_t line,
-                      const std::vector<double>& wavelengths_nm) {
-  if (wavelengths_nm.size() < 2) {
-    throw ParseError(path, line,
-                     "a spectrum needs at least 2 wavelengths, found " +
-                         std::to_string(wavelengths_nm.size()));
+void CheckNextWavelength(const LineReader& reader, const std::vector<double>& previous_nm,
+                         double wavelength_nm) {
+  const std::string ordinal = "wavelength #" + std::to_string(previous_nm.size() + 1);
+  if (!std::isfinite(wavelength_nm) || wavelength_nm <= 0) {
+    reader.Fail(ordinal + " = " + Format("%g", wavelength_nm) + " nm is not a positive number");
   }
-  for (size_t k = 0; k < wavelengths_nm.size(); ++k) {
-    const double lambda = wavelengths_nm[k];
-    if (!std::isfinite(lambda) || lambda <= 0) {
-      throw ParseError(path, line,
-                       "wavelength #" + std::to_string(k + 1) + " = " + Format("%g", lambda) +
-                           " nm is not a positive number");
-    }
-    if (k > 0 && !(lambda > wavelengths_nm[k - 1])) {
-      throw ParseError(path, line,
-                       "wavelengths must increase, but #" + std::to_string(k + 1) + " (" +
-                           Format("%g", lambda) + " nm) follows " +
-                           Format("%g", wavelengths_nm[k - 1]) + " nm");
-    }
+  if (!previous_nm.empty() && !(wavelength_nm > previous_nm.back())) {
+    reader.Fail("wavelengths must increase, but " + ordinal + " (" + Format("%g", wavelength_nm) +
+                " nm) follows " + Format("%g", previous_nm.back()) + " nm");
   }
 }
 
@@ -78,12 +67,17 @@ void SpectralRecords::Add(const std::string& path, int64_t line, const double* r
   const double* spectrum = record + kFirstSpectral;
   // Negative BRDF values are noise in a measurement, not a format error: keep them, count them
   // (brdf info reports the negative RGB channels they lead to).
-  negative_values_ += std::count_if(spectrum, spectrum + wavelengths_nm_.size(),
-                                    [](double value) { return value < 0; });
+  const auto negative = std::count_if(spectrum, spectrum + wavelengths_nm_.size(),
+                                      [](double value) { return value < 0; });
+  negative_values_ += negative;
   Sample sample;
   sample.wi = SphericalDirection(theta_i, phi_i);
   sample.wo = SphericalDirection(theta_s, phi_s);
   sample.value = to_rgb_(spectrum);
+  // Saturated colours (the Cornell blues and reds) lie outside the sRGB gamut: a non-negative
+  // spectrum then has a negative linear-sRGB channel. Said in the metadata, so that the
+  // negative counts of `brdf info` are not mistaken for bad data.
+  if (negative == 0 && (sample.value < 0).any()) ++out_of_gamut_;
   measurement->samples.push_back(sample);
 }
 
@@ -92,10 +86,13 @@ void SpectralRecords::Describe(Measurement* measurement) const {
   metadata["illuminant"] = IlluminantName(to_rgb_.illuminant());
   metadata["spectral"] = std::to_string(wavelengths_nm_.size()) + " bands " +
                          Format("%g", wavelengths_nm_.front()) + "-" +
-                         Format("%g", wavelengths_nm_.back()) +
-                         " nm -> RGB via CIE 1931 2deg";
+                         Format("%g", wavelengths_nm_.back()) + " nm -> RGB via CIE 1931 2deg";
   metadata["units"] = "sr^-1";
   metadata["negative_spectral_values"] = std::to_string(negative_values_);
+  metadata["rgb_out_of_gamut"] =
+      std::to_string(out_of_gamut_) + " of " + std::to_string(measurement->samples.size()) +
+      " samples have a negative linear-sRGB channel from a non-negative spectrum (a colour "
+      "outside the sRGB gamut)";
 }
 
 }  // namespace brdf

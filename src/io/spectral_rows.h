@@ -10,20 +10,25 @@
 
 #include "core/colour.h"
 #include "core/measurement.h"
+#include "core/text.h"
 
 namespace brdf {
 
-// Checks that `wavelengths_nm` can drive a spectral -> RGB conversion: at least two, finite,
-// positive, strictly increasing. Throws ParseError at `line` of `path` otherwise.
-void CheckWavelengths(const std::string& path, int64_t line,
-                      const std::vector<double>& wavelengths_nm);
+// A spectrum -> RGB conversion needs at least two wavelengths (core/colour.h).
+inline constexpr int64_t kMinWavelengths = 2;
+
+// Checks the next wavelength of a list against those before it: finite, positive and larger
+// than the last (SpectrumToRgb interpolates on a strictly increasing grid). Throws ParseError at
+// the reader's current line, so the message points at the offending value.
+void CheckNextWavelength(const LineReader& reader, const std::vector<double>& previous_nm,
+                         double wavelength_nm);
 
 class SpectralRecords {
  public:
   // Field positions in a record (theta from the normal, phi from +x; DESIGN §1).
   static constexpr int kThetaI = 0, kPhiI = 1, kThetaS = 2, kPhiS = 3, kFirstSpectral = 4;
 
-  // `wavelengths_nm` must have passed CheckWavelengths.
+  // `wavelengths_nm`: at least kMinWavelengths, each checked by CheckNextWavelength.
   SpectralRecords(std::vector<double> wavelengths_nm, Illuminant illuminant);
 
   // Values per record: the four angles and one per wavelength.
@@ -34,13 +39,14 @@ class SpectralRecords {
   void Add(const std::string& path, int64_t line, const double* record, Measurement* measurement);
 
   // States what the conversion assumed ("illuminant", "spectral", "units") and what it saw
-  // ("negative_spectral_values") in the metadata.
+  // ("negative_spectral_values", "rgb_out_of_gamut") in the metadata.
   void Describe(Measurement* measurement) const;
 
  private:
   std::vector<double> wavelengths_nm_;
   SpectrumToRgb to_rgb_;
   int64_t negative_values_ = 0;
+  int64_t out_of_gamut_ = 0;  // samples with a negative RGB channel from a non-negative spectrum
 };
 
 }  // namespace brdf
