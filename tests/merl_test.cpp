@@ -79,6 +79,24 @@ TEST(Merl, LookupLandsInTheRightCell) {
   }
 }
 
+TEST(Merl, MeasurementDirectionsAreTheCellCentres) {
+  MerlTable table;
+  for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) table.raw(0, cell) = 1.0;
+  const Measurement measurement = table.ToMeasurement();
+  for (int h : {0, 1, 17, 45, 89}) {
+    for (int d : {0, 30, 89}) {
+      for (int p : {0, 90, 179}) {
+        Vec3 wi, wo;
+        FromHalfDiff(MerlTable::CellCentre(h, d, p), &wi, &wo);
+        const Sample& sample = measurement.samples[MerlTable::CellIndex(h, d, p)];
+        EXPECT_NEAR((sample.wi - wi).norm(), 0.0, 1e-14);
+        EXPECT_NEAR((sample.wo - wo).norm(), 0.0, 1e-14);
+        EXPECT_EQ(MerlTable::CellOf(sample.wi, sample.wo), MerlTable::CellIndex(h, d, p));
+      }
+    }
+  }
+}
+
 TEST(Merl, AnalyticTableSurvivesWriteAndRead) {
   ScratchDir dir;
   const Model model = ParseModel("blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.5:m=50");

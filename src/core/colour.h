@@ -40,9 +40,10 @@ struct CieTables {
 // Converts a reflectance-like spectrum (a ratio such as a BRDF in sr^-1, sampled at
 // `wavelengths_nm`, increasing) to linear sRGB as seen under `illuminant`:
 //   XYZ = sum f(l) S(l) cmf(l) / sum S(l) ybar(l),
-// so a spectrally flat value v becomes (v, v, v) under either illuminant (for E the white is
-// carried to D65 by the Bradford transform). Outside the sampled range the spectrum is held
-// at its end values; inside it is interpolated linearly.
+// so a spectrally flat value v becomes (v, v, v) under either illuminant: the illuminant's
+// white is carried to the sRGB D65 white by the Bradford transform (for E a real change; for
+// D65 a ~1e-4 correction, since the 5 nm table's white is not exactly sRGB's). Outside the
+// sampled range the spectrum is held at its end values; inside it is interpolated linearly.
 class SpectrumToRgb {
  public:
   SpectrumToRgb(std::vector<double> wavelengths_nm, Illuminant illuminant);

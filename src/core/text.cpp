@@ -10,19 +10,24 @@
 
 namespace brdf {
 
-std::string ReadFileBytes(const std::string& path, int64_t max_bytes) {
+int64_t RegularFileSize(const std::string& path) {
   struct stat info;
   if (::stat(path.c_str(), &info) != 0) throw InputError(path, "cannot open (no such file)");
   if (S_ISDIR(info.st_mode)) throw InputError(path, "is a directory, expected a file");
   if (!S_ISREG(info.st_mode)) throw InputError(path, "is not a regular file");
-  if (info.st_size > max_bytes) {
-    throw InputError(path, "file of " + std::to_string(info.st_size) +
+  return info.st_size;
+}
+
+std::string ReadFileBytes(const std::string& path, int64_t max_bytes) {
+  const int64_t size = RegularFileSize(path);
+  if (size > max_bytes) {
+    throw InputError(path, "file of " + std::to_string(size) +
                                " bytes is larger than the " + std::to_string(max_bytes) +
                                "-byte limit for this format");
   }
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw InputError(path, "cannot open for reading");
-  std::string bytes(static_cast<size_t>(info.st_size), '\0');
+  std::string bytes(static_cast<size_t>(size), '\0');
   stream.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   if (stream.gcount() != static_cast<std::streamsize>(bytes.size())) {
     throw ByteError(path, stream.gcount(), "read failed (file changed while reading?)");

@@ -9,6 +9,10 @@
 
 namespace brdf {
 
+// Size of a regular file. Throws InputError if it cannot be opened or is not a regular file
+// (a directory, a device).
+int64_t RegularFileSize(const std::string& path);
+
 // Reads a whole file into memory. Throws InputError if it cannot be opened, is not a regular
 // file (a directory, a device) or is larger than `max_bytes`.
 std::string ReadFileBytes(const std::string& path, int64_t max_bytes = int64_t{1} << 32);

@@ -81,15 +81,17 @@ Rgb MerlTable::Lookup(const Vec3& wi, const Vec3& wo) const {
 }
 
 MerlTable MerlTable::Read(const std::string& path) {
-  // ReadFileBytes checks the size before allocating, so a hostile file never drives a large
-  // allocation; a few bytes of slack let the size error below report the true length.
-  const std::string bytes = ReadFileBytes(path, kFileBytes + 8);
-  if (static_cast<int64_t>(bytes.size()) < kHeaderBytes) {
-    throw ByteError(path, static_cast<int64_t>(bytes.size()),
+  // The size is checked against the header before anything large is allocated, so a hostile
+  // file never drives an allocation; the doubles are then read straight into the table.
+  const int64_t size = RegularFileSize(path);
+  std::ifstream stream(path, std::ios::binary);
+  if (!stream) throw InputError(path, "cannot open for reading");
+  int32_t dims[3] = {0, 0, 0};
+  stream.read(reinterpret_cast<char*>(dims), sizeof(dims));
+  if (stream.gcount() < kHeaderBytes) {
+    throw ByteError(path, stream.gcount(),
                     "file ends inside the 12-byte MERL header (three int32 dimensions)");
   }
-  int32_t dims[3];
-  std::memcpy(dims, bytes.data(), sizeof(dims));
   for (int k = 0; k < 3; ++k) {
     if (dims[k] != kDimensions[k]) {
       throw ByteError(path, 4 * k,
@@ -97,15 +99,18 @@ MerlTable MerlTable::Read(const std::string& path) {
                           std::to_string(dims[k]) + ", expected 90 90 180");
     }
   }
-  if (static_cast<int64_t>(bytes.size()) != kFileBytes) {
-    throw ByteError(path, static_cast<int64_t>(bytes.size()),
+  if (size != kFileBytes) {
+    throw ByteError(path, size,
                     "dimensions 90x90x180 need " + std::to_string(kFileBytes) +
-                        " bytes, the file has " + std::to_string(bytes.size()) +
-                        (static_cast<int64_t>(bytes.size()) < kFileBytes ? " (truncated)"
-                                                                         : ""));
+                        " bytes, the file has " + std::to_string(size) +
+                        (size < kFileBytes ? " (truncated)" : ""));
   }
   MerlTable table;
-  std::memcpy(table.raw_.data(), bytes.data() + kHeaderBytes, table.raw_.size() * 8);
+  const std::streamsize payload = static_cast<std::streamsize>(table.raw_.size() * 8);
+  stream.read(reinterpret_cast<char*>(table.raw_.data()), payload);
+  if (stream.gcount() != payload) {
+    throw ByteError(path, kHeaderBytes + stream.gcount(), "read failed (file changed?)");
+  }
   for (size_t k = 0; k < table.raw_.size(); ++k) {
     if (!std::isfinite(table.raw_[k])) {
       throw ByteError(path, kHeaderBytes + 8 * static_cast<int64_t>(k),
@@ -128,15 +133,42 @@ void MerlTable::Write(const std::string& path) const {
 }
 
 Measurement MerlTable::ToMeasurement() const {
+  // Cell-centre directions from per-bin sines and cosines: the same rotation as FromHalfDiff
+  // (wi = Ry(theta_h) d with phi_h = 0; wo = 2 (wi.h) h - wi) without 1.4 million sets of trig
+  // calls, which made this conversion four times slower than reading the file.
+  struct SinCos {
+    double sin, cos;
+  };
+  auto tabulate = [](int bins, auto angle_of_bin) {
+    std::vector<SinCos> table(bins);
+    for (int k = 0; k < bins; ++k) table[k] = {std::sin(angle_of_bin(k)), std::cos(angle_of_bin(k))};
+    return table;
+  };
+  const std::vector<SinCos> theta_h = tabulate(kThetaHalfBins, [](int k) {
+    return CellCentre(k, 0, 0).theta_h;
+  });
+  const std::vector<SinCos> theta_d = tabulate(kThetaDiffBins, [](int k) {
+    return CellCentre(0, k, 0).theta_d;
+  });
+  const std::vector<SinCos> phi_d = tabulate(kPhiDiffBins, [](int k) {
+    return CellCentre(0, 0, k).phi_d;
+  });
+
   Measurement measurement;
   measurement.samples.resize(kCells);
   tbb::parallel_for(0, kThetaHalfBins, [&](int theta_h_index) {
+    const SinCos h = theta_h[theta_h_index];
+    const Vec3 half_vector(h.sin, 0.0, h.cos);
     for (int theta_diff_index = 0; theta_diff_index < kThetaDiffBins; ++theta_diff_index) {
+      const SinCos d = theta_d[theta_diff_index];
       for (int phi_diff_index = 0; phi_diff_index < kPhiDiffBins; ++phi_diff_index) {
+        const SinCos p = phi_d[phi_diff_index];
+        const Vec3 diff(d.sin * p.cos, d.sin * p.sin, d.cos);
         const int64_t cell = CellIndex(theta_h_index, theta_diff_index, phi_diff_index);
         Sample& sample = measurement.samples[cell];
-        FromHalfDiff(CellCentre(theta_h_index, theta_diff_index, phi_diff_index), &sample.wi,
-                     &sample.wo);
+        sample.wi = Vec3(h.cos * diff.x() + h.sin * diff.z(), diff.y(),
+                         -h.sin * diff.x() + h.cos * diff.z());
+        sample.wo = 2.0 * sample.wi.dot(half_vector) * half_vector - sample.wi;
         bool missing = sample.wi.z() <= 0.0 || sample.wo.z() <= 0.0;
         for (int c = 0; c < 3; ++c) {
           const double stored = raw(c, cell);
