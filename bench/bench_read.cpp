@@ -18,9 +18,9 @@ namespace {
 const std::string& MerlPath() {
   static const std::string path = [] {
     const char* from_env = std::getenv("BRDFKIT_BENCH_MERL");
-    std::string file = from_env ? from_env
-                                : (std::filesystem::temp_directory_path() / "brdfkit-bench.binary")
-                                      .string();
+    std::string file =
+        from_env ? from_env
+                 : (std::filesystem::temp_directory_path() / "brdfkit-bench.binary").string();
     if (!std::filesystem::exists(file)) {
       const Model model = ParseModel("blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.4:m=300");
       MerlTable table;
@@ -64,11 +64,14 @@ void BM_ReadFile(benchmark::State& state, const char* relative) {
   state.SetBytesProcessed(state.iterations() * std::filesystem::file_size(path));
 }
 BENCHMARK_CAPTURE(BM_ReadFile, astm_cayman, "cornell-astm/cayman.astm")
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_ReadFile, pbrt_cayman, "cornell-pbrt-v2/cayman.brdf")
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_ReadFile, zemax, "zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf")
-    ->Unit(benchmark::kMillisecond)->UseRealTime();
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace brdf

@@ -87,8 +87,8 @@ TEST(Cli, HostileInputExitsTwoWithOneLineAndNoOutput) {
   };
   for (const auto& [name, contents] : inputs) {
     const std::string path = dir.Write(name, contents);
-    for (const std::string& command : {"info '" + path + "'",
-                                       "convert '" + path + "' '" + out + "'"}) {
+    for (const std::string& command :
+         {"info '" + path + "'", "convert '" + path + "' '" + out + "'"}) {
       const testing::CommandResult result = RunBrdf(command);
       EXPECT_EQ(result.exit_status, 2) << command << "\n" << result.err;
       EXPECT_EQ(CountLines(result.err), 1) << command << "\n" << result.err;
@@ -114,9 +114,8 @@ TEST(Cli, DirectoryAndMissingFileAreInputErrors) {
 
 TEST(Cli, UnwritableOutputIsAnErrorAndLosesNothing) {
   ScratchDir dir;
-  const testing::CommandResult result =
-      RunBrdf("convert '" + DataPath("cornell-astm/cayman.astm") + "' '" + dir.path() +
-              "/no/such/dir/out.csv'");
+  const testing::CommandResult result = RunBrdf("convert '" + DataPath("cornell-astm/cayman.astm") +
+                                                "' '" + dir.path() + "/no/such/dir/out.csv'");
   EXPECT_EQ(result.exit_status, 2) << result.err;
   EXPECT_EQ(CountLines(result.err), 1) << result.err;
   EXPECT_EQ(dir.CountEntries(), 0);

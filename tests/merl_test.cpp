@@ -1,4 +1,6 @@
 // MERL table: analytic write/read, the non-linear theta_h index, bit-exact copy, hostile files.
+#include "io/merl.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 
 #include "core/errors.h"
 #include "io/formats.h"
-#include "io/merl.h"
 #include "models/model_string.h"
 #include "test_util.h"
 
@@ -54,8 +55,8 @@ TEST(Merl, ThetaHalfIndexIsSquareRootWarped) {
   for (int k = 0; k < 90; ++k) {
     EXPECT_EQ(MerlTable::ThetaHalfIndex(MerlTable::CellCentre(k, 0, 0).theta_h), k);
   }
-  EXPECT_EQ(MerlTable::ThetaDiffIndex(0.5), 28);   // 0.5 / (pi/2) * 90 = 28.65
-  EXPECT_EQ(MerlTable::PhiDiffIndex(1.0), 57);     // 1.0 / pi * 180 = 57.3
+  EXPECT_EQ(MerlTable::ThetaDiffIndex(0.5), 28);      // 0.5 / (pi/2) * 90 = 28.65
+  EXPECT_EQ(MerlTable::PhiDiffIndex(1.0), 57);        // 1.0 / pi * 180 = 57.3
   EXPECT_EQ(MerlTable::PhiDiffIndex(1.0 + kPi), 57);  // reciprocity fold
 }
 
@@ -131,7 +132,7 @@ TEST(Merl, NegativeValuesAreMissingNotData) {
   const MeasurementSummary summary = Summarize(read);
   EXPECT_EQ(summary.missing, static_cast<size_t>(MerlTable::kCells - 1));
   EXPECT_EQ(summary.negative, 0u);
-  EXPECT_DOUBLE_EQ(summary.max[0], 0.5);          // 750 / 1500
+  EXPECT_DOUBLE_EQ(summary.max[0], 0.5);  // 750 / 1500
   EXPECT_DOUBLE_EQ(summary.max[2], 750 * 1.66 / 1500);
 }
 

@@ -72,8 +72,8 @@ TEST(NativeCsv, HostileInputsNameFileAndLine) {
   const std::vector<HostileCase> cases = {
       {"wrong-magic.csv", "# some other v1\n" + header.substr(25), "line 1"},
       {"no-header.csv", "# brdfkit measurement v1\n# sample: x\n", "line 2"},
-      {"bad-header.csv", "# brdfkit measurement v1\ntheta_i,phi_i,theta_s,phi_o,r,g,b\n1,2,3,4,5,6,7\n",
-       "line 2"},
+      {"bad-header.csv",
+       "# brdfkit measurement v1\ntheta_i,phi_i,theta_s,phi_o,r,g,b\n1,2,3,4,5,6,7\n", "line 2"},
       {"columns.csv", header + "10,0,20,0,0.1,0.1,0.1\n10,0,20,0,0.1,0.1\n", "line 5"},
       {"non-number.csv", header + "10,0,20,zero,0.1,0.1,0.1\n", "line 4"},
       {"nan.csv", header + "10,0,20,0,nan,0.1,0.1\n", "line 4"},
@@ -98,8 +98,7 @@ TEST(NativeCsv, HostileInputsNameFileAndLine) {
     } catch (const InputError& error) {
       const std::string message = error.what();
       EXPECT_NE(message.find(path), std::string::npos) << message;
-      EXPECT_NE(message.find(hostile.where), std::string::npos)
-          << hostile.name << ": " << message;
+      EXPECT_NE(message.find(hostile.where), std::string::npos) << hostile.name << ": " << message;
     }
   }
 }

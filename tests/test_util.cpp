@@ -53,8 +53,7 @@ std::string Slurp(const std::string& path) {
 CommandResult RunBrdf(const std::string& arguments) {
   ScratchDir capture;
   const std::string command = std::string("'") + BRDFKIT_BINARY + "' " + arguments + " >'" +
-                              capture.File("out") + "' 2>'" + capture.File("err") +
-                              "' </dev/null";
+                              capture.File("out") + "' 2>'" + capture.File("err") + "' </dev/null";
   const int status = std::system(command.c_str());
   CommandResult result;
   if (status != -1 && WIFEXITED(status)) result.exit_status = WEXITSTATUS(status);

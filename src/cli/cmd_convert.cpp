@@ -17,16 +17,15 @@ Command AddConvertCommand(CLI::App& parent) {
     bool quiet = false;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* app = parent.add_subcommand(
-      "convert", "Convert a measurement file to native CSV or MERL .binary");
+  CLI::App* app =
+      parent.add_subcommand("convert", "Convert a measurement file to native CSV or MERL .binary");
   app->add_option("IN", options->input, "input measurement file")->required();
   app->add_option("OUT", options->output,
                   "output file; the format follows the extension (.csv, .binary)")
       ->required();
   app->add_option("--format", options->format,
                   "output format, overriding the extension (native-csv, merl)");
-  app->add_option("--illuminant", options->illuminant,
-                  "illuminant for spectral inputs (D65 or E)")
+  app->add_option("--illuminant", options->illuminant, "illuminant for spectral inputs (D65 or E)")
       ->capture_default_str();
   app->add_flag("--quiet", options->quiet, "print nothing on success");
 

@@ -51,8 +51,9 @@ Command AddDemoCommand(CLI::App& parent) {
   };
   auto options = std::make_shared<Options>();
   CLI::App* app = parent.add_subcommand(
-      "demo", "The main job on built-in defaults: read every bundled real measurement and "
-              "summarize it");
+      "demo",
+      "The main job on built-in defaults: read every bundled real measurement and "
+      "summarize it");
   app->add_option("--out", options->out, "directory for the outputs")->capture_default_str();
   app->add_option("--data", options->data, "directory of bundled measurements")
       ->capture_default_str();

@@ -87,7 +87,8 @@ void PrintSummaryTable(std::ostream& out, const std::vector<SummaryRow>& rows) {
     if (file.size() > 44) file = "..." + file.substr(file.size() - 41);
     std::string sample = s.sample_name.substr(0, 26);
     const double max_y = Luminance(s.max);  // of the per-channel maxima
-    std::snprintf(buffer, sizeof(buffer), "%-44s %-10s %-26s %8zu %6.1f-%-6.1f %6.1f-%-6.1f %5zu %10.4g %8zu\n",
+    std::snprintf(buffer, sizeof(buffer),
+                  "%-44s %-10s %-26s %8zu %6.1f-%-6.1f %6.1f-%-6.1f %5zu %10.4g %8zu\n",
                   file.c_str(), s.format.c_str(), sample.c_str(), s.samples, s.theta_i_deg[0],
                   s.theta_i_deg[1], s.theta_o_deg[0], s.theta_o_deg[1], s.incidence_directions,
                   max_y, s.missing);

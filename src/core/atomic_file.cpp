@@ -52,7 +52,8 @@ void WriteFileAtomically(const std::string& path, const std::function<void(std::
   const std::string temporary = MakeTemporary(path);
   try {
     {
-      std::ofstream stream(temporary, binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
+      std::ofstream stream(temporary,
+                           binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
       if (!stream) throw OutputError(path, "cannot open a temporary file for writing");
       write(stream);
       stream.flush();
@@ -60,8 +61,8 @@ void WriteFileAtomically(const std::string& path, const std::function<void(std::
     }
     FlushToDisk(temporary);
     if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-      throw OutputError(path, std::string("cannot rename the finished file into place: ") +
-                                  std::strerror(errno));
+      throw OutputError(
+          path, std::string("cannot rename the finished file into place: ") + std::strerror(errno));
     }
   } catch (...) {
     std::remove(temporary.c_str());

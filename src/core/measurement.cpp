@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
 #include <tuple>
+#include <vector>
 
 #include "core/angles.h"
 
@@ -41,7 +41,7 @@ MeasurementSummary Summarize(const Measurement& measurement) {
     theta_o[0] = std::min(theta_o[0], to);
     theta_o[1] = std::max(theta_o[1], to);
     incidences.emplace_back(std::llround(sample.wi.x() * 1e6), std::llround(sample.wi.y() * 1e6),
-                       std::llround(sample.wi.z() * 1e6));
+                            std::llround(sample.wi.z() * 1e6));
     for (int c = 0; c < 3; ++c) {
       const double v = sample.value[c];
       if (!std::isfinite(v)) {

@@ -21,9 +21,8 @@ int64_t RegularFileSize(const std::string& path) {
 std::string ReadFileBytes(const std::string& path, int64_t max_bytes) {
   const int64_t size = RegularFileSize(path);
   if (size > max_bytes) {
-    throw InputError(path, "file of " + std::to_string(size) +
-                               " bytes is larger than the " + std::to_string(max_bytes) +
-                               "-byte limit for this format");
+    throw InputError(path, "file of " + std::to_string(size) + " bytes is larger than the " +
+                               std::to_string(max_bytes) + "-byte limit for this format");
   }
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw InputError(path, "cannot open for reading");

@@ -35,16 +35,31 @@ std::string KnownFormats(bool writable) {
 
 const std::vector<FileFormat>& FileFormats() {
   static const std::vector<FileFormat> formats = {
-      {"native-csv", "brdfkit measurement CSV (degrees, sr^-1)", {".csv"}, &SniffNativeCsv,
-       &ReadNativeCsv, &WriteNativeCsv},
-      {"merl", "MERL isotropic binary table 90x90x180", {".binary"}, &SniffMerl, &ReadMerl,
+      {"native-csv",
+       "brdfkit measurement CSV (degrees, sr^-1)",
+       {".csv"},
+       &SniffNativeCsv,
+       &ReadNativeCsv,
+       &WriteNativeCsv},
+      {"merl",
+       "MERL isotropic binary table 90x90x180",
+       {".binary"},
+       &SniffMerl,
+       &ReadMerl,
        &WriteMerl},
-      {"astm", "ASTM E1392 text (Cornell), spectral", {".astm"}, &SniffAstm, &ReadAstm,
+      {"astm", "ASTM E1392 text (Cornell), spectral", {".astm"}, &SniffAstm, &ReadAstm, nullptr},
+      {"pbrt-brdf",
+       "pbrt-v2 measured .brdf text, spectral",
+       {".brdf"},
+       &SniffPbrtBrdf,
+       &ReadPbrtBrdf,
        nullptr},
-      {"pbrt-brdf", "pbrt-v2 measured .brdf text, spectral", {".brdf"}, &SniffPbrtBrdf,
-       &ReadPbrtBrdf, nullptr},
-      {"zemax", "Zemax tabular BSDF (BRDF, plane-symmetric)", {".bsdf"}, &SniffZemax,
-       &ReadZemax, nullptr},
+      {"zemax",
+       "Zemax tabular BSDF (BRDF, plane-symmetric)",
+       {".bsdf"},
+       &SniffZemax,
+       &ReadZemax,
+       nullptr},
   };
   return formats;
 }
@@ -70,8 +85,9 @@ const FileFormat& DetectFormat(const std::string& path) {
       if (known == extension) return format;
     }
   }
-  throw ByteError(path, 0, "not a measurement format brdfkit reads (expected one of: " +
-                               KnownFormats(false) + ")");
+  throw ByteError(
+      path, 0,
+      "not a measurement format brdfkit reads (expected one of: " + KnownFormats(false) + ")");
 }
 
 const FileFormat& OutputFormat(const std::string& path, const std::string& format_name) {
@@ -84,14 +100,14 @@ const FileFormat& OutputFormat(const std::string& path, const std::string& forma
     }
     if (!match) continue;
     if (format.write == nullptr) {
-      throw UsageError(path + ": brdfkit cannot write " + format.name + " files (writable: " +
-                       KnownFormats(true) + ")");
+      throw UsageError(path + ": brdfkit cannot write " + format.name +
+                       " files (writable: " + KnownFormats(true) + ")");
     }
     return format;
   }
   throw UsageError(path + ": cannot tell the output format from '" +
-                   (format_name.empty() ? extension : format_name) + "' (writable: " +
-                   KnownFormats(true) + ")");
+                   (format_name.empty() ? extension : format_name) +
+                   "' (writable: " + KnownFormats(true) + ")");
 }
 
 Measurement ReadMeasurement(const std::string& path, const ReadOptions& options) {

@@ -23,8 +23,8 @@ struct WriteReport {
 };
 
 struct FileFormat {
-  std::string name;         // "native-csv", "merl", "astm", "pbrt-brdf", "zemax"
-  std::string description;  // one line for --help and `brdf info`
+  std::string name;                     // "native-csv", "merl", "astm", "pbrt-brdf", "zemax"
+  std::string description;              // one line for --help and `brdf info`
   std::vector<std::string> extensions;  // lower case, with the dot
   // True when the first bytes of a file (up to 4 KiB) and its size say "this is mine".
   bool (*sniff)(std::string_view head, int64_t file_size) = nullptr;

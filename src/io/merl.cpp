@@ -66,8 +66,7 @@ HalfDiff MerlTable::CellCentre(int theta_h_index, int theta_diff_index, int phi_
 
 int64_t MerlTable::CellOf(const Vec3& wi, const Vec3& wo) {
   const HalfDiff hd = ToHalfDiff(wi, wo);
-  return CellIndex(ThetaHalfIndex(hd.theta_h), ThetaDiffIndex(hd.theta_d),
-                   PhiDiffIndex(hd.phi_d));
+  return CellIndex(ThetaHalfIndex(hd.theta_h), ThetaDiffIndex(hd.theta_d), PhiDiffIndex(hd.phi_d));
 }
 
 Rgb MerlTable::Lookup(const Vec3& wi, const Vec3& wo) const {
@@ -95,8 +94,8 @@ MerlTable MerlTable::Read(const std::string& path) {
   for (int k = 0; k < 3; ++k) {
     if (dims[k] != kDimensions[k]) {
       throw ByteError(path, 4 * k,
-                      "MERL dimension " + std::to_string(k + 1) + " is " +
-                          std::to_string(dims[k]) + ", expected 90 90 180");
+                      "MERL dimension " + std::to_string(k + 1) + " is " + std::to_string(dims[k]) +
+                          ", expected 90 90 180");
     }
   }
   if (size != kFileBytes) {
@@ -141,18 +140,16 @@ Measurement MerlTable::ToMeasurement() const {
   };
   auto tabulate = [](int bins, auto angle_of_bin) {
     std::vector<SinCos> table(bins);
-    for (int k = 0; k < bins; ++k) table[k] = {std::sin(angle_of_bin(k)), std::cos(angle_of_bin(k))};
+    for (int k = 0; k < bins; ++k)
+      table[k] = {std::sin(angle_of_bin(k)), std::cos(angle_of_bin(k))};
     return table;
   };
-  const std::vector<SinCos> theta_h = tabulate(kThetaHalfBins, [](int k) {
-    return CellCentre(k, 0, 0).theta_h;
-  });
-  const std::vector<SinCos> theta_d = tabulate(kThetaDiffBins, [](int k) {
-    return CellCentre(0, k, 0).theta_d;
-  });
-  const std::vector<SinCos> phi_d = tabulate(kPhiDiffBins, [](int k) {
-    return CellCentre(0, 0, k).phi_d;
-  });
+  const std::vector<SinCos> theta_h =
+      tabulate(kThetaHalfBins, [](int k) { return CellCentre(k, 0, 0).theta_h; });
+  const std::vector<SinCos> theta_d =
+      tabulate(kThetaDiffBins, [](int k) { return CellCentre(0, k, 0).theta_d; });
+  const std::vector<SinCos> phi_d =
+      tabulate(kPhiDiffBins, [](int k) { return CellCentre(0, 0, k).phi_d; });
 
   Measurement measurement;
   measurement.samples.resize(kCells);
@@ -179,7 +176,8 @@ Measurement MerlTable::ToMeasurement() const {
       }
     }
   });
-  measurement.metadata["units"] = "BRDF in sr^-1 (stored values times 1/1500, 1.15/1500, 1.66/1500)";
+  measurement.metadata["units"] =
+      "BRDF in sr^-1 (stored values times 1/1500, 1.15/1500, 1.66/1500)";
   measurement.metadata["grid"] =
       "MERL 90x90x180 (theta_h sqrt-warped, theta_d, phi_d in [0, pi)); one sample per cell "
       "centre, phi_h = 0";

@@ -58,8 +58,8 @@ Columns ParseHeader(const LineReader& reader, std::string_view line) {
   return columns;
 }
 
-double ParseAngle(const LineReader& reader, std::string_view field, const char* what,
-                  double lower, double upper) {
+double ParseAngle(const LineReader& reader, std::string_view field, const char* what, double lower,
+                  double upper) {
   const double degrees = ParseNumber(reader, field, what);
   if (degrees < lower || degrees > upper) {
     std::ostringstream message;
@@ -171,8 +171,9 @@ WriteReport WriteNativeCsv(const Measurement& measurement, const std::string& pa
     for (size_t k = 0; k < measurement.samples.size(); ++k) {
       const Sample& sample = measurement.samples[k];
       if (sample.missing) continue;
-      out << FormatNumber(RadToDeg(Theta(sample.wi))) << ',' << FormatNumber(RadToDeg(Phi(sample.wi)))
-          << ',' << FormatNumber(RadToDeg(Theta(sample.wo))) << ','
+      out << FormatNumber(RadToDeg(Theta(sample.wi))) << ','
+          << FormatNumber(RadToDeg(Phi(sample.wi))) << ','
+          << FormatNumber(RadToDeg(Theta(sample.wo))) << ','
           << FormatNumber(RadToDeg(Phi(sample.wo)));
       for (int c = 0; c < 3; ++c) out << ',' << FormatNumber(sample.value[c]);
       if (measurement.has_sigma()) {

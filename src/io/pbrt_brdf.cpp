@@ -99,14 +99,14 @@ Measurement ReadPbrtBrdf(const std::string& path, const ReadOptions& options) {
         }
         record.push_back(ParseNumber(reader, fields[f], RecordFieldName(record.size())));
         if (record.size() < records->record_size()) continue;
-        const std::string record_shape = std::to_string(records->record_size()) +
-                                         " values (4 angles + " + std::to_string(wavelength_count) +
-                                         " spectral)";
-        if (f + 1 < fields.size() && record_line == reader.line_number()) {
-          reader.Fail("line holds " + std::to_string(fields.size()) + " values, a record holds " +
-                      record_shape);
-        }
-        if (f + 1 < fields.size()) {
+        if (f + 1 < fields.size()) {  // the record ends mid-line
+          const std::string record_shape = std::to_string(records->record_size()) +
+                                           " values (4 angles + " +
+                                           std::to_string(wavelength_count) + " spectral)";
+          if (record_line == reader.line_number()) {
+            reader.Fail("line holds " + std::to_string(fields.size()) + " values, a record holds " +
+                        record_shape);
+          }
           throw ParseError(path, record_line,
                            "the record starting here has " + std::to_string(record_values_on_line) +
                                " values on this line and ends in the middle of line " +

@@ -11,8 +11,8 @@
 // rho_d + rho_s <= 1 bounds the albedo at normal incidence exactly.
 #pragma once
 
-#include "models/common.h"
 #include "models/blinn_phong.h"
+#include "models/common.h"
 
 namespace brdf::models {
 
@@ -24,8 +24,7 @@ struct BlinnPhongExact : LobedSlots {
     using std::pow;
     if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
     const T& m = params[kExponent];
-    const T normalization =
-        (m + T(2)) * (m + T(4)) / (T(8 * kPi) * (pow(T(2), -m / T(2)) + m));
+    const T normalization = (m + T(2)) * (m + T(4)) / (T(8 * kPi) * (pow(T(2), -m / T(2)) + m));
     const T lobe = normalization * ClampedPow(BlinnPhong::CosThetaHalf(wi, wo), m);
     return LoadRgb(params, kRhoD) * T(kInvPi) + LoadRgb(params, kRhoS) * lobe;
   }

@@ -13,16 +13,15 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // `brdf energy` can show that it is not conserving. Exponents up to 1e6 cover real materials
 // (measured lobes reach ~1e5) with room to spare.
 ParamInfo RhoD(double default_value) {
-  return {"rho_d", models::LobedSlots::kRhoD, 3, 0.0, kInf, default_value,
-          "diffuse albedo (RGB)"};
+  return {"rho_d", models::LobedSlots::kRhoD, 3, 0.0, kInf, default_value, "diffuse albedo (RGB)"};
 }
 ParamInfo RhoS() {
-  return {"rho_s", models::LobedSlots::kRhoS, 3, 0.0, kInf, 0.04,
-          "specular lobe albedo scale (RGB)"};
+  return {"rho_s", models::LobedSlots::kRhoS,         3, 0.0, kInf,
+          0.04,    "specular lobe albedo scale (RGB)"};
 }
 ParamInfo Exponent(const char* name) {
-  return {name, models::LobedSlots::kExponent, 1, 0.0, 1e6, 100.0,
-          "lobe exponent (larger is sharper)"};
+  return {name,  models::LobedSlots::kExponent,      1, 0.0, 1e6,
+          100.0, "lobe exponent (larger is sharper)"};
 }
 
 template <typename M>
@@ -43,8 +42,8 @@ std::vector<ModelInfo> BuildRegistry() {
   registry.push_back(MakeInfo<models::Lambert>("rho_d/pi", {RhoD(0.5)}));
   registry.push_back(MakeInfo<models::Phong>("rho_d/pi + rho_s (n+2)/(2pi) cos^n(alpha)",
                                              {RhoD(0.5), RhoS(), Exponent("n")}));
-  registry.push_back(MakeInfo<models::BlinnPhong>(
-      "rho_d/pi + rho_s (m+8)/(8pi) cos^m(theta_h)", {RhoD(0.5), RhoS(), Exponent("m")}));
+  registry.push_back(MakeInfo<models::BlinnPhong>("rho_d/pi + rho_s (m+8)/(8pi) cos^m(theta_h)",
+                                                  {RhoD(0.5), RhoS(), Exponent("m")}));
   registry.push_back(MakeInfo<models::BlinnPhongExact>(
       "rho_d/pi + rho_s (m+2)(m+4)/(8pi(2^(-m/2)+m)) cos^m(theta_h)",
       {RhoD(0.5), RhoS(), Exponent("m")}));

@@ -16,10 +16,10 @@
 namespace brdf {
 
 struct ParamInfo {
-  std::string name;      // as written in model strings and reports, e.g. "rho_d"
-  int slot = 0;          // first index in the flat parameter array
-  int channels = 1;      // 3 for RGB parameters
-  double lower = 0.0;    // accepted range (inclusive)
+  std::string name;    // as written in model strings and reports, e.g. "rho_d"
+  int slot = 0;        // first index in the flat parameter array
+  int channels = 1;    // 3 for RGB parameters
+  double lower = 0.0;  // accepted range (inclusive)
   double upper = 0.0;
   double default_value = 0.0;
   std::string meaning;
