@@ -14,11 +14,6 @@ namespace {
 using testing::DataPath;
 using testing::RunBrdf;
 using testing::ScratchDir;
-
-int CountLines(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
-
 TEST(Cli, HelpDocumentsEveryCommand) {
   const testing::CommandResult result = RunBrdf("--help");
   EXPECT_EQ(result.exit_status, 0);
@@ -91,7 +86,7 @@ TEST(Cli, HostileInputExitsTwoWithOneLineAndNoOutput) {
          {"info '" + path + "'", "convert '" + path + "' '" + out + "'"}) {
       const testing::CommandResult result = RunBrdf(command);
       EXPECT_EQ(result.exit_status, 2) << command << "\n" << result.err;
-      EXPECT_EQ(CountLines(result.err), 1) << command << "\n" << result.err;
+      EXPECT_EQ(testing::CountLines(result.err), 1) << command << "\n" << result.err;
       EXPECT_NE(result.err.find(path), std::string::npos) << result.err;
       EXPECT_TRUE(result.err.find("line") != std::string::npos ||
                   result.err.find("byte") != std::string::npos)
@@ -117,7 +112,7 @@ TEST(Cli, UnwritableOutputIsAnErrorAndLosesNothing) {
   const testing::CommandResult result = RunBrdf("convert '" + DataPath("cornell-astm/cayman.astm") +
                                                 "' '" + dir.path() + "/no/such/dir/out.csv'");
   EXPECT_EQ(result.exit_status, 2) << result.err;
-  EXPECT_EQ(CountLines(result.err), 1) << result.err;
+  EXPECT_EQ(testing::CountLines(result.err), 1) << result.err;
   EXPECT_EQ(dir.CountEntries(), 0);
 }
 

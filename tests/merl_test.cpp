@@ -35,14 +35,6 @@ Measurement TabulateOnGrid(const Model& model) {
   }
   return measurement;
 }
-
-std::string Slurp(const std::string& path) {
-  std::ifstream stream(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << stream.rdbuf();
-  return buffer.str();
-}
-
 TEST(Merl, FileSizeIsTheDocumentedOne) { EXPECT_EQ(MerlTable::kFileBytes, 34992012); }
 
 TEST(Merl, ThetaHalfIndexIsSquareRootWarped) {
@@ -149,7 +141,7 @@ TEST(Merl, ConvertMerlToMerlIsBitExact) {
   const testing::CommandResult result =
       testing::RunBrdf("convert --quiet '" + original + "' '" + copy + "'");
   ASSERT_EQ(result.exit_status, 0) << result.err;
-  EXPECT_TRUE(Slurp(original) == Slurp(copy));
+  EXPECT_TRUE(testing::ReadFileText(original) == testing::ReadFileText(copy));
 }
 
 TEST(Merl, HostileFilesNameTheByte) {
@@ -157,7 +149,7 @@ TEST(Merl, HostileFilesNameTheByte) {
   MerlTable table;
   const std::string good = dir.File("good.binary");
   table.Write(good);
-  const std::string bytes = Slurp(good);
+  const std::string bytes = testing::ReadFileText(good);
 
   auto expect_error = [&](const std::string& name, const std::string& contents,
                           const std::string& fragment) {

@@ -23,29 +23,6 @@ namespace {
 using testing::DataPath;
 using testing::RunBrdf;
 using testing::ScratchDir;
-
-std::string ReadText(const std::string& path) {
-  std::ifstream stream(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << stream.rdbuf();
-  return buffer.str();
-}
-
-// Lines `first`..`last` (1-based, inclusive) of `text`, each with its original line end.
-std::string Lines(const std::string& text, int first, int last) {
-  std::string out;
-  int line = 1;
-  size_t start = 0;
-  while (start < text.size() && line <= last) {
-    size_t end = text.find('\n', start);
-    end = end == std::string::npos ? text.size() : end + 1;
-    if (line >= first) out += text.substr(start, end - start);
-    start = end;
-    ++line;
-  }
-  return out;
-}
-
 // Comma-separated doubles, parsed independently of the reader under test.
 std::vector<double> CommaSeparated(const std::string& line) {
   std::vector<double> values;
@@ -61,12 +38,7 @@ std::vector<double> CornellWavelengths() {
   return wavelengths;
 }
 
-std::string Head(const std::string& path) { return ReadText(path).substr(0, 4096); }
-
-int CountLines(const std::string& text) {
-  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
-}
-
+std::string Head(const std::string& path) { return testing::ReadFileText(path).substr(0, 4096); }
 // ---------------------------------------------------------------------------------------------
 // ASTM E1392 against the real file.
 
@@ -97,7 +69,8 @@ TEST(Astm, CaymanRow77ThroughSpectrumToRgb) {
       0.006299, 0.007188, 0.008105, 0.008963, 0.009578, 0.010233, 0.011755};
   const std::string path = DataPath("cornell-astm/cayman.astm");
   // Guard the typing with an independent parse of the same line.
-  const std::vector<double> row = CommaSeparated(Lines(ReadText(path), 100, 100));
+  const std::vector<double> row =
+      CommaSeparated(testing::Lines(testing::ReadFileText(path), 100, 100));
   ASSERT_EQ(row.size(), 35u);
   EXPECT_EQ(row[0], 0.174533);
   EXPECT_EQ(row[3], -2.356194);
@@ -185,7 +158,7 @@ TEST(Astm, SniffsByContent) {
   // Content decides, not the extension.
   ScratchDir dir;
   const std::string renamed =
-      dir.Write("cayman.txt", ReadText(DataPath("cornell-astm/cayman.astm")));
+      dir.Write("cayman.txt", testing::ReadFileText(DataPath("cornell-astm/cayman.astm")));
   EXPECT_EQ(ReadMeasurement(renamed).format, "astm");
 }
 
@@ -233,7 +206,7 @@ TEST(Pbrt, SniffsOnlyTheNumWlsComment) {
   EXPECT_FALSE(SniffPbrtBrdf("# just a comment\n31\n", 20));
   ScratchDir dir;
   const std::string renamed =
-      dir.Write("cayman.dat", ReadText(DataPath("cornell-pbrt-v2/cayman.brdf")));
+      dir.Write("cayman.dat", testing::ReadFileText(DataPath("cornell-pbrt-v2/cayman.brdf")));
   EXPECT_EQ(ReadMeasurement(renamed).format, "pbrt-brdf");
 }
 
@@ -346,7 +319,7 @@ void ExpectCliRejects(const std::vector<HostileCase>& cases) {
     const std::string path = dir.Write(hostile.name, hostile.contents);
     const testing::CommandResult result = RunBrdf("info '" + path + "'");
     EXPECT_EQ(result.exit_status, 2) << result.err;
-    EXPECT_EQ(CountLines(result.err), 1) << result.err;
+    EXPECT_EQ(testing::CountLines(result.err), 1) << result.err;
     EXPECT_NE(result.err.find(path), std::string::npos) << result.err;
     const std::string where =
         hostile.contents.empty() ? "byte 0" : "line " + std::to_string(hostile.line) + ":";
@@ -357,9 +330,9 @@ void ExpectCliRejects(const std::vector<HostileCase>& cases) {
 // The real cayman.astm: lines 1-21 header (NUM_POINTS on 20, VARS on 21), 22 blank, rows from
 // 23. `Astm(n, rows)` is that header with NUM_POINTS n followed by `rows` real rows.
 std::string AstmFile(int num_points, int rows) {
-  const std::string text = ReadText(DataPath("cornell-astm/cayman.astm"));
-  return Lines(text, 1, 19) + "NUM_POINTS " + std::to_string(num_points) + "\n" +
-         Lines(text, 21, 22 + rows);
+  const std::string text = testing::ReadFileText(DataPath("cornell-astm/cayman.astm"));
+  return testing::Lines(text, 1, 19) + "NUM_POINTS " + std::to_string(num_points) + "\n" +
+         testing::Lines(text, 21, 22 + rows);
 }
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
@@ -370,7 +343,7 @@ std::string Replace(std::string text, const std::string& from, const std::string
 
 std::vector<HostileCase> AstmHostileCases() {
   const std::string good = AstmFile(3, 3);  // rows on lines 23, 24, 25
-  const std::string row25 = Lines(good, 25, 25);
+  const std::string row25 = testing::Lines(good, 25, 25);
   return {
       {"empty.astm", "", 1},
       {"truncated-rows.astm", AstmFile(1439, 3), 25},
@@ -398,7 +371,8 @@ TEST(Astm, HostileInputsNameFileAndLine) { ExpectRejected(&ReadAstm, AstmHostile
 TEST(Astm, TruncatedRealFileSaysWhereItEnded) {
   ScratchDir dir;
   const std::string path =
-      dir.Write("cut.astm", Lines(ReadText(DataPath("cornell-astm/cayman.astm")), 1, 34));
+      dir.Write("cut.astm",
+                testing::Lines(testing::ReadFileText(DataPath("cornell-astm/cayman.astm")), 1, 34));
   try {
     ReadAstm(path, {});
     ADD_FAILURE() << "accepted";
@@ -414,18 +388,19 @@ TEST(Astm, HostileInputsFailTheCliWithOneLine) { ExpectCliRejects(AstmHostileCas
 // The real cayman.brdf (CRLF line ends): comments on 1-3, "# num wls" 5, 31 on 6, the
 // wavelengths on 9-10, records from 14.
 std::string PbrtFile(int records) {
-  return Lines(ReadText(DataPath("cornell-pbrt-v2/cayman.brdf")), 1, 13 + records);
+  return testing::Lines(testing::ReadFileText(DataPath("cornell-pbrt-v2/cayman.brdf")), 1,
+                        13 + records);
 }
 
 std::vector<HostileCase> PbrtHostileCases() {
   const std::string good = PbrtFile(3);  // records on lines 14, 15, 16
-  const std::string record16 = Lines(good, 16, 16);
+  const std::string record16 = testing::Lines(good, 16, 16);
   const std::string no_records = PbrtFile(0);
   return {
       {"empty.brdf", "", 1},
       {"comments-only.brdf", "# num wls\r\n", 1},
       {"truncated-record.brdf", good.substr(0, good.size() - record16.size() / 2), 16},
-      {"truncated-wavelengths.brdf", Lines(good, 1, 9), 9},
+      {"truncated-wavelengths.brdf", testing::Lines(good, 1, 9), 9},
       {"zero-wavelengths.brdf", Replace(good, "# num wls\r\n31", "# num wls\r\n0"), 6},
       {"too-many-wavelengths.brdf", Replace(good, "# num wls\r\n31", "# num wls\r\n5000"), 6},
       {"count-not-a-number.brdf", Replace(good, "# num wls\r\n31", "# num wls\r\nthirty"), 6},

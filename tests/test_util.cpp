@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -41,14 +42,30 @@ int ScratchDir::CountEntries() const {
   return count;
 }
 
-namespace {
-std::string Slurp(const std::string& path) {
+std::string ReadFileText(const std::string& path) {
   std::ifstream stream(path, std::ios::binary);
   std::stringstream buffer;
   buffer << stream.rdbuf();
   return buffer.str();
 }
-}  // namespace
+
+std::string Lines(const std::string& text, int first, int last) {
+  std::string out;
+  int line = 1;
+  size_t start = 0;
+  while (start < text.size() && line <= last) {
+    size_t end = text.find('\n', start);
+    end = end == std::string::npos ? text.size() : end + 1;
+    if (line >= first) out += text.substr(start, end - start);
+    start = end;
+    ++line;
+  }
+  return out;
+}
+
+int CountLines(const std::string& text) {
+  return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+}
 
 CommandResult RunBrdf(const std::string& arguments) {
   ScratchDir capture;
@@ -57,8 +74,8 @@ CommandResult RunBrdf(const std::string& arguments) {
   const int status = std::system(command.c_str());
   CommandResult result;
   if (status != -1 && WIFEXITED(status)) result.exit_status = WEXITSTATUS(status);
-  result.out = Slurp(capture.File("out"));
-  result.err = Slurp(capture.File("err"));
+  result.out = ReadFileText(capture.File("out"));
+  result.err = ReadFileText(capture.File("err"));
   return result;
 }
 

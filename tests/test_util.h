@@ -29,6 +29,13 @@ class ScratchDir {
   std::string path_;
 };
 
+// Whole file as bytes ("" when it cannot be read).
+std::string ReadFileText(const std::string& path);
+// Lines `first`..`last` (1-based, inclusive) of `text`, each with its original line end.
+std::string Lines(const std::string& text, int first, int last);
+// Number of '\n' in `text`.
+int CountLines(const std::string& text);
+
 struct CommandResult {
   int exit_status = -1;  // -1 when killed by a signal
   std::string out;       // stdout

@@ -48,14 +48,6 @@ const Measurement& RealFile() {
 const Sample& Cell(double incidence_deg, double azimuth_deg, double radial_deg) {
   return RealFile().samples.at(CellIndex(incidence_deg, azimuth_deg, RadialIndex(radial_deg)));
 }
-
-std::string ReadText(const std::string& path) {
-  std::ifstream stream(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << stream.rdbuf();
-  return buffer.str();
-}
-
 double AngleDeg(const Vec3& a, const Vec3& b) {
   return RadToDeg(std::atan2(a.cross(b).norm(), a.dot(b)));
 }
@@ -175,12 +167,15 @@ TEST(Zemax, BlindSpotCellsAreReadAsData) {
 }
 
 TEST(Zemax, SniffsByContent) {
-  const std::string head = ReadText(DataPath(kRealFile)).substr(0, 4096);
+  const std::string head = testing::ReadFileText(DataPath(kRealFile)).substr(0, 4096);
   EXPECT_TRUE(SniffZemax(head, 27758));
-  EXPECT_FALSE(SniffZemax(ReadText(DataPath("cornell-astm/cayman.astm")).substr(0, 4096), 1));
-  EXPECT_FALSE(SniffZemax(ReadText(DataPath("cornell-pbrt-v2/cayman.brdf")).substr(0, 4096), 1));
+  EXPECT_FALSE(
+      SniffZemax(testing::ReadFileText(DataPath("cornell-astm/cayman.astm")).substr(0, 4096), 1));
+  EXPECT_FALSE(SniffZemax(
+      testing::ReadFileText(DataPath("cornell-pbrt-v2/cayman.brdf")).substr(0, 4096), 1));
   ScratchDir dir;
-  const std::string renamed = dir.Write("brown_vinyl.txt", ReadText(DataPath(kRealFile)));
+  const std::string renamed =
+      dir.Write("brown_vinyl.txt", testing::ReadFileText(DataPath(kRealFile)));
   EXPECT_EQ(ReadMeasurement(renamed).format, "zemax");
 }
 
@@ -227,21 +222,6 @@ struct HostileCase {
   std::string contents;
   int line;
 };
-
-std::string Lines(const std::string& text, int first, int last) {
-  std::string out;
-  int line = 1;
-  size_t start = 0;
-  while (start < text.size() && line <= last) {
-    size_t end = text.find('\n', start);
-    end = end == std::string::npos ? text.size() : end + 1;
-    if (line >= first) out += text.substr(start, end - start);
-    start = end;
-    ++line;
-  }
-  return out;
-}
-
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);
   if (at == std::string::npos) std::abort();  // a broken test, not a broken reader
@@ -249,13 +229,13 @@ std::string Replace(std::string text, const std::string& from, const std::string
 }
 
 std::vector<HostileCase> HostileCases() {
-  const std::string good = ReadText(DataPath(kRealFile));
-  const std::string line30 = Lines(good, 30, 30);
+  const std::string good = testing::ReadFileText(DataPath(kRealFile));
+  const std::string line30 = testing::Lines(good, 30, 30);
   return {
       {"empty.bsdf", "", 1},
-      {"truncated.bsdf", Lines(good, 1, 100), 100},
-      {"header-only.bsdf", Lines(good, 1, 16), 16},
-      {"no-data-end.bsdf", Lines(good, 1, 277), 277},
+      {"truncated.bsdf", testing::Lines(good, 1, 100), 100},
+      {"header-only.bsdf", testing::Lines(good, 1, 16), 16},
+      {"no-data-end.bsdf", testing::Lines(good, 1, 277), 277},
       {"no-data-begin.bsdf", Replace(good, "DataBegin\n", ""), 17},
       {"spectral-xyz.bsdf", Replace(good, "SpectralContent  Monochrome", "SpectralContent  XYZ"),
        5},
