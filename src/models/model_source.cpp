@@ -1,0 +1,86 @@
+#include "models/model_source.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.h"
+#include "core/text.h"
+#include "models/model_string.h"
+
+namespace brdf {
+namespace {
+
+// Fit reports are small; anything larger is not one.
+constexpr int64_t kMaxReportBytes = int64_t{16} << 20;
+
+}  // namespace
+
+bool IsFitReportPath(const std::string& spec) {
+  if (spec.size() < 5) return false;
+  std::string extension = spec.substr(spec.size() - 5);
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return extension == ".json";
+}
+
+Model ReadFitReportModel(const std::string& path) {
+  const std::string text = ReadFileBytes(path, kMaxReportBytes);
+  nlohmann::json report;
+  try {
+    report = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& error) {
+    throw ByteError(path, static_cast<int64_t>(error.byte) - 1,
+                    "not valid JSON, expected a fit report");
+  }
+  if (!report.is_object() || !report.contains("model") || !report["model"].is_string()) {
+    throw InputError(path, "expected a fit report with a \"model\" name (DESIGN §6)");
+  }
+  const std::string name = report["model"].get<std::string>();
+  const ModelInfo* info = nullptr;
+  try {
+    info = &FindModel(name);
+  } catch (const UsageError& error) {
+    throw InputError(path, error.what());
+  }
+  if (!report.contains("params") || !report["params"].is_object()) {
+    throw InputError(path, "expected \"params\": {...} with the parameters of '" + name + "'");
+  }
+  const nlohmann::json& params = report["params"];
+  std::vector<double> values(info->num_params, 0.0);
+  for (const ParamInfo& param : info->params) {
+    if (!params.contains(param.name)) {
+      throw InputError(path, "params has no \"" + param.name + "\" (model '" + name + "')");
+    }
+    const nlohmann::json& value = params[param.name];
+    std::vector<double> channels;
+    if (value.is_number()) {
+      channels.assign(param.channels, value.get<double>());
+    } else if (value.is_array() && static_cast<int>(value.size()) == param.channels &&
+               std::all_of(value.begin(), value.end(),
+                           [](const nlohmann::json& v) { return v.is_number(); })) {
+      for (const nlohmann::json& v : value) channels.push_back(v.get<double>());
+    } else {
+      throw InputError(path, "params." + param.name + " must be a number" +
+                                 (param.channels == 3 ? " or [r, g, b]" : ""));
+    }
+    for (int c = 0; c < param.channels; ++c) {
+      if (!std::isfinite(channels[c]) || channels[c] < param.lower || channels[c] > param.upper) {
+        throw InputError(path, "params." + param.name + " = " + FormatNumber(channels[c]) +
+                                   " is outside [" + FormatNumber(param.lower) + ", " +
+                                   FormatNumber(param.upper) + "]");
+      }
+      values[param.slot + c] = channels[c];
+    }
+  }
+  return Model(*info, std::move(values));
+}
+
+Model LoadModel(const std::string& spec) {
+  if (IsFitReportPath(spec)) return ReadFitReportModel(spec);
+  return ParseModel(spec);
+}
+
+}  // namespace brdf
