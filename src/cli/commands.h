@@ -15,6 +15,7 @@ struct Command {
 
 Command AddInfoCommand(CLI::App& parent);
 Command AddConvertCommand(CLI::App& parent);
+Command AddFitCommand(CLI::App& parent);
 Command AddDemoCommand(CLI::App& parent);
 
 }  // namespace brdf::cli

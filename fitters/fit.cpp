@@ -1,0 +1,505 @@
+#include "fitters/fit.h"
+
+#include <ceres/ceres.h>
+#include <glog/logging.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+#include "core/errors.h"
+#include "core/text.h"
+#include "fitters/energy_bound.h"
+#include "fitters/parameterization.h"
+#include "fitters/residual.h"
+
+namespace brdf::fitters {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// |logistic variable| beyond which its derivative (< 1e-10) no longer informs the covariance.
+constexpr double kSaturated = 23.0;
+
+// The fitter's free variables (parameterization.h); s[0] alone when the lobe is grey.
+struct Variables {
+  double d[3] = {0, 0, 0};
+  double s[3] = {0, 0, 0};
+  double log_m[1] = {0};
+};
+
+template <typename ModelType>
+class ModelFitter {
+ public:
+  ModelFitter(LobeKind kind, const FitOptions& options)
+      : kind_(kind), options_(options), lobed_(kind != LobeKind::kNone) {}
+
+  int FreeVariables() const { return lobed_ ? (options_.grey_specular ? 5 : 7) : 3; }
+
+  std::vector<double> Params(const Variables& v) const {
+    std::vector<double> params(ModelType::kNumParams);
+    VariablesToParams<double>(kind_, options_.grey_specular, v.d, v.s, v.log_m, params.data());
+    return params;
+  }
+
+  // Data-driven start for one trial exponent: rho_d from the diffuse floor, rho_s from the peak
+  // height above it, both pulled inside the energy budget.
+  Variables InitialGuess(const std::vector<FitSample>& samples, double exponent) const {
+    Variables v;
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> values;
+      values.reserve(samples.size());
+      for (const FitSample& sample : samples) values.push_back(sample.value[c]);
+      const size_t floor_rank = lobed_ ? values.size() / 5 : values.size() / 2;
+      std::nth_element(values.begin(), values.begin() + floor_rank, values.end());
+      const double floor_value = std::max(values[floor_rank], 0.0);
+      const double peak = *std::max_element(values.begin(), values.end());
+      double rho_d = std::clamp(kPi * floor_value, 1e-3, 0.9);
+      if (!lobed_) {
+        v.d[c] = Logit(rho_d);
+        continue;
+      }
+      // The model's own value at the lobe peak (wi = wo = normal) per unit rho_s.
+      double unit[models::LobedSlots::kNumParams] = {0, 0, 0, 1, 1, 1, exponent};
+      const Vec3 normal(0, 0, 1);
+      const double peak_per_rho_s = ModelType::template Eval<double>(unit, normal, normal)[0];
+      const double rho_s = std::max(peak - rho_d / kPi, 1e-6) / peak_per_rho_s;
+      const double q = std::clamp(LobeAlbedoAtNormal(kind_, exponent) * rho_s, 1e-6, 0.9);
+      rho_d = std::min(rho_d, 0.99 * (1.0 - q));
+      v.d[c] = Logit(rho_d / (1.0 - q));
+      v.s[c] = Logit(q);
+    }
+    if (options_.grey_specular) v.s[0] = (v.s[0] + v.s[1] + v.s[2]) / 3.0;
+    v.log_m[0] = std::log(exponent);
+    return v;
+  }
+
+  // A problem over `samples` (which must outlive it), with `loss` not owned.
+  std::unique_ptr<ceres::Problem> BuildProblem(const std::vector<FitSample>& samples, Variables* v,
+                                               ceres::LossFunction* loss) const {
+    ceres::Problem::Options problem_options;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    auto problem = std::make_unique<ceres::Problem>(problem_options);
+    const int block = options_.samples_per_block;
+    for (size_t start = 0; start < samples.size(); start += block) {
+      const int count = static_cast<int>(std::min<size_t>(block, samples.size() - start));
+      auto* residual = new BatchResidual<ModelType>(kind_, options_.grey_specular, options_.loss,
+                                                    samples.data() + start, count);
+      if (!lobed_) {
+        problem->AddResidualBlock(
+            new ceres::AutoDiffCostFunction<BatchResidual<ModelType>, ceres::DYNAMIC, 3>(residual,
+                                                                                         3 * count),
+            loss, v->d);
+      } else if (options_.grey_specular) {
+        problem->AddResidualBlock(
+            new ceres::AutoDiffCostFunction<BatchResidual<ModelType>, ceres::DYNAMIC, 3, 1, 1>(
+                residual, 3 * count),
+            loss, v->d, v->s, v->log_m);
+      } else {
+        problem->AddResidualBlock(
+            new ceres::AutoDiffCostFunction<BatchResidual<ModelType>, ceres::DYNAMIC, 3, 3, 1>(
+                residual, 3 * count),
+            loss, v->d, v->s, v->log_m);
+      }
+    }
+    const int d_size = 3, s_size = options_.grey_specular ? 1 : 3;
+    for (int k = 0; k < d_size; ++k) {
+      problem->SetParameterLowerBound(v->d, k, -FitVariables::kLogisticBound);
+      problem->SetParameterUpperBound(v->d, k, FitVariables::kLogisticBound);
+    }
+    if (lobed_) {
+      for (int k = 0; k < s_size; ++k) {
+        problem->SetParameterLowerBound(v->s, k, -FitVariables::kLogisticBound);
+        problem->SetParameterUpperBound(v->s, k, FitVariables::kLogisticBound);
+      }
+      problem->SetParameterLowerBound(v->log_m, 0, std::log(FitVariables::kMinExponent));
+      problem->SetParameterUpperBound(v->log_m, 0, std::log(FitVariables::kMaxExponent));
+    }
+    return problem;
+  }
+
+  ceres::Solver::Summary Solve(ceres::Problem* problem, int max_iterations) const {
+    ceres::Solver::Options solver_options;
+    solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
+    solver_options.max_num_iterations = max_iterations;
+    solver_options.num_threads = options_.threads > 0
+                                     ? options_.threads
+                                     : static_cast<int>(std::thread::hardware_concurrency());
+    solver_options.function_tolerance = 1e-12;
+    solver_options.gradient_tolerance = 1e-14;
+    solver_options.parameter_tolerance = 1e-12;
+    solver_options.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options, problem, &summary);
+    return summary;
+  }
+
+  std::vector<double*> Blocks(Variables* v) const {
+    if (!lobed_) return {v->d};
+    return {v->d, v->s, v->log_m};
+  }
+
+  // Robust scale: 3 x the residuals' robust standard deviation (1.4826 MAD) at the non-robust
+  // optimum, so inliers stay in the quadratic part and outliers are down-weighted.
+  double RobustScale(ceres::Problem* problem) const {
+    std::vector<double> residuals;
+    problem->Evaluate(ceres::Problem::EvaluateOptions(), nullptr, &residuals, nullptr, nullptr);
+    for (double& r : residuals) r = std::abs(r);
+    const size_t middle = residuals.size() / 2;
+    std::nth_element(residuals.begin(), residuals.begin() + middle, residuals.end());
+    double rms = 0;
+    for (double r : residuals) rms += r * r;
+    rms = std::sqrt(rms / residuals.size());
+    return std::max(3.0 * 1.4826 * residuals[middle], 1e-9 * std::max(rms, 1.0));
+  }
+
+  // Sandwich (Huber-White) covariance of the variables, A^-1 B A^-1: A^-1 from
+  // ceres::Covariance, B = sum_i J_i^T J_i r_i^2 from one pass over the residual blocks. It
+  // stays right when the weights or sigmas do not match the true noise.
+  bool Covariance(ceres::Problem* problem, Variables* v, Eigen::MatrixXd* covariance,
+                  std::string* note) const {
+    const std::vector<double*> blocks = Blocks(v);
+    std::vector<int> sizes;
+    for (double* block : blocks) sizes.push_back(problem->ParameterBlockSize(block));
+    int n = 0;
+    std::vector<int> offsets;
+    for (int size : sizes) {
+      offsets.push_back(n);
+      n += size;
+    }
+    // A logistic variable pushed against its bound (a parameter at 0, or an albedo budget
+    // used up) has a vanishing derivative, which would make the whole covariance singular. Hold
+    // such coordinates constant, so the others still get standard errors; the held ones are
+    // reported as "at the bound".
+    std::vector<bool> held(n, false);
+    for (size_t b = 0; b < blocks.size(); ++b) {
+      if (blocks[b] == v->log_m) continue;
+      std::vector<int> constant;
+      for (int k = 0; k < sizes[b]; ++k) {
+        if (std::abs(blocks[b][k]) >= kSaturated) {
+          constant.push_back(k);
+          held[offsets[b] + k] = true;
+        }
+      }
+      if (static_cast<int>(constant.size()) == sizes[b]) {
+        problem->SetParameterBlockConstant(blocks[b]);
+      } else if (!constant.empty()) {
+        problem->SetManifold(blocks[b], new ceres::SubsetManifold(sizes[b], constant));
+      }
+    }
+    ceres::Covariance::Options covariance_options;
+    covariance_options.num_threads = 2;
+    ceres::Covariance ceres_covariance(covariance_options);
+    std::vector<std::pair<const double*, const double*>> pairs;
+    for (double* a : blocks) {
+      for (double* b : blocks) pairs.emplace_back(a, b);
+    }
+    if (!ceres_covariance.Compute(pairs, problem)) {
+      *note =
+          "rank-deficient: not every parameter is identifiable from these data (for example a "
+          "lobe fitted to matte data leaves the exponent free)";
+      return false;
+    }
+    Eigen::MatrixXd a_inverse(n, n);
+    for (size_t i = 0; i < blocks.size(); ++i) {
+      for (size_t j = 0; j < blocks.size(); ++j) {
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> part(sizes[i],
+                                                                                    sizes[j]);
+        ceres_covariance.GetCovarianceBlock(blocks[i], blocks[j], part.data());
+        a_inverse.block(offsets[i], offsets[j], sizes[i], sizes[j]) = part;
+      }
+    }
+    std::vector<ceres::ResidualBlockId> residual_blocks;
+    problem->GetResidualBlocks(&residual_blocks);
+    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(n, n);
+    std::vector<double> residuals;
+    std::vector<std::vector<double>> jacobians(blocks.size());
+    std::vector<double*> jacobian_pointers(blocks.size());
+    for (ceres::ResidualBlockId id : residual_blocks) {
+      const ceres::CostFunction* cost = problem->GetCostFunctionForResidualBlock(id);
+      const int rows = cost->num_residuals();
+      residuals.resize(rows);
+      for (size_t b = 0; b < blocks.size(); ++b) {
+        jacobians[b].resize(rows * sizes[b]);
+        jacobian_pointers[b] = jacobians[b].data();
+      }
+      cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data());
+      Eigen::VectorXd row(n);
+      for (int r = 0; r < rows; ++r) {
+        for (size_t b = 0; b < blocks.size(); ++b) {
+          for (int k = 0; k < sizes[b]; ++k) row[offsets[b] + k] = jacobians[b][r * sizes[b] + k];
+        }
+        meat.noalias() += (residuals[r] * residuals[r]) * row * row.transpose();
+      }
+    }
+    *covariance = a_inverse * meat * a_inverse;
+    for (int k = 0; k < n; ++k) {
+      if (held[k]) (*covariance)(k, k) = kNaN;  // marks "at the bound" for ParamStderr
+    }
+    return true;
+  }
+
+  // Standard errors of the model parameters by the delta method through the
+  // parameterization's Jacobian (automatic differentiation with Jets).
+  std::vector<double> ParamStderr(const Variables& v, const Eigen::MatrixXd& covariance) const {
+    using Jet = ceres::Jet<double, 7>;
+    const int n = static_cast<int>(covariance.rows());
+    Jet d[3], s[3], log_m[1];
+    int slot = 0;
+    for (int c = 0; c < 3; ++c) d[c] = Jet(v.d[c], slot++);
+    const int s_size = lobed_ ? (options_.grey_specular ? 1 : 3) : 0;
+    for (int c = 0; c < s_size; ++c) s[c] = Jet(v.s[c], slot++);
+    if (lobed_) log_m[0] = Jet(v.log_m[0], slot++);
+    Jet params[ModelType::kNumParams];
+    VariablesToParams<Jet>(kind_, options_.grey_specular, d, s, log_m, params);
+    // Held (at-the-bound) variables carry NaN on the diagonal and zeros elsewhere; a
+    // parameter that depends on one gets NaN, "not available".
+    Eigen::MatrixXd finite_covariance = covariance;
+    std::vector<bool> held(n);
+    for (int k = 0; k < n; ++k) {
+      held[k] = std::isnan(covariance(k, k));
+      if (held[k]) finite_covariance(k, k) = 0.0;
+    }
+    std::vector<double> errors(ModelType::kNumParams);
+    for (int p = 0; p < ModelType::kNumParams; ++p) {
+      const Eigen::VectorXd gradient = params[p].v.head(n);
+      bool depends_on_held = false;
+      for (int k = 0; k < n; ++k)
+        depends_on_held = depends_on_held || (held[k] && gradient[k] != 0);
+      errors[p] = depends_on_held
+                      ? kNaN
+                      : std::sqrt(std::max(0.0, gradient.dot(finite_covariance * gradient)));
+    }
+    return errors;
+  }
+
+ private:
+  LobeKind kind_;
+  const FitOptions& options_;
+  bool lobed_;
+};
+
+FitMetrics ComputeMetrics(const Model& model, const std::vector<FitSample>& samples) {
+  struct Sums {
+    double weight = 0, l2 = 0, log = 0, cosine = 0;
+  };
+  const Sums sums = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, samples.size()), Sums{},
+      [&](const tbb::blocked_range<size_t>& range, Sums partial) {
+        for (size_t k = range.begin(); k < range.end(); ++k) {
+          const FitSample& sample = samples[k];
+          const Rgb f = model.Eval(sample.wi, sample.wo);
+          const Rgb difference = f - sample.value;
+          const double c = sample.cos_theta_i;
+          const Rgb log_difference =
+              (1.0 + f * c).log() - (1.0 + (sample.value * c).max(-0.999)).log();
+          partial.weight += 3 * sample.weight;
+          partial.l2 += sample.weight * difference.square().sum();
+          partial.log += sample.weight * log_difference.square().sum();
+          partial.cosine += sample.weight * (difference * c).square().sum();
+        }
+        return partial;
+      },
+      [](Sums a, const Sums& b) {
+        a.weight += b.weight;
+        a.l2 += b.l2;
+        a.log += b.log;
+        a.cosine += b.cosine;
+        return a;
+      });
+  FitMetrics metrics;
+  metrics.rmse = std::sqrt(sums.l2 / sums.weight);
+  metrics.log_rmse = std::sqrt(sums.log / sums.weight);
+  metrics.cosine_l2 = std::sqrt(sums.cosine / sums.weight);
+  return metrics;
+}
+
+bool Converged(const ceres::Solver::Summary& summary) {
+  return summary.termination_type == ceres::CONVERGENCE ||
+         summary.termination_type == ceres::USER_SUCCESS;
+}
+
+template <typename ModelType>
+FitResult RunFit(LobeKind kind, const ModelInfo& info, const PreparedSamples& prepared,
+                 const FitOptions& options) {
+  ModelFitter<ModelType> fitter(kind, options);
+  const std::vector<FitSample>& all = prepared.samples;
+  const std::vector<FitSample> subset = Subsample(all, options.max_samples, options.seed);
+  const bool subsampled = subset.size() < all.size();
+
+  // 1. Multi-start over the exponent on the subsample, without a robust loss.
+  Variables best;
+  double best_cost = std::numeric_limits<double>::infinity();
+  const std::vector<double> starts =
+      kind == LobeKind::kNone ? std::vector<double>{1.0} : options.start_exponents;
+  int iterations = 0;
+  for (double exponent : starts) {
+    Variables trial = fitter.InitialGuess(subset, exponent);
+    auto problem = fitter.BuildProblem(subset, &trial, nullptr);
+    const ceres::Solver::Summary summary = fitter.Solve(problem.get(), options.start_iterations);
+    iterations += static_cast<int>(summary.iterations.size());
+    if (std::isfinite(summary.final_cost) && summary.final_cost < best_cost) {
+      best_cost = summary.final_cost;
+      best = trial;
+    }
+  }
+  if (!std::isfinite(best_cost)) throw ComputeError("every start of the fit failed");
+
+  // 2. Refine the best start on the subsample; choose the robust scale there.
+  std::unique_ptr<ceres::LossFunction> robust_loss;
+  {
+    auto problem = fitter.BuildProblem(subset, &best, nullptr);
+    iterations +=
+        static_cast<int>(fitter.Solve(problem.get(), options.max_iterations).iterations.size());
+    if (options.robust != Robust::kNone) {
+      const double scale = fitter.RobustScale(problem.get());
+      if (options.robust == Robust::kHuber) {
+        robust_loss = std::make_unique<ceres::HuberLoss>(scale);
+      } else {
+        robust_loss = std::make_unique<ceres::CauchyLoss>(scale);
+      }
+      auto robust_problem = fitter.BuildProblem(subset, &best, robust_loss.get());
+      iterations += static_cast<int>(
+          fitter.Solve(robust_problem.get(), options.max_iterations).iterations.size());
+    }
+  }
+
+  // 3. Polish on every sample (the final solve, whose convergence is reported).
+  Variables final_variables = best;
+  auto problem = fitter.BuildProblem(all, &final_variables, robust_loss.get());
+  const ceres::Solver::Summary summary = fitter.Solve(problem.get(), options.max_iterations);
+  iterations += static_cast<int>(summary.iterations.size());
+
+  std::vector<double> params = fitter.Params(final_variables);
+  bool finite =
+      std::all_of(params.begin(), params.end(), [](double p) { return std::isfinite(p); });
+  if (!finite) {  // never return NaN: fall back to the subsample's optimum
+    final_variables = best;
+    params = fitter.Params(final_variables);
+  }
+
+  FitResult result(Model(info, params));
+  result.loss = options.loss;
+  result.robust = options.robust;
+  result.samples = all.size();
+  result.skipped = prepared.skipped_missing + prepared.skipped_invalid;
+  result.weighting = prepared.weighting;
+  result.converged = finite && Converged(summary);
+  result.iterations = iterations;
+  result.final_cost = summary.final_cost;
+  result.termination = summary.BriefReport();
+  result.free_variables = fitter.FreeVariables();
+  result.metrics = ComputeMetrics(result.model, all);
+  if (subsampled) {
+    result.warnings.push_back("started from a stratified subsample of " +
+                              std::to_string(subset.size()) + " samples, then polished on all " +
+                              std::to_string(all.size()));
+  }
+
+  // Standard errors.
+  Eigen::MatrixXd covariance;
+  result.stderr_values.assign(params.size(), kNaN);
+  if (fitter.Covariance(problem.get(), &final_variables, &covariance, &result.stderr_note)) {
+    result.stderr_values = fitter.ParamStderr(final_variables, covariance);
+    result.stderr_available = true;
+  }
+
+  // Information criterion from the plain weighted residuals (the loss's, not the robust one).
+  std::vector<double> residuals;
+  ceres::Problem::EvaluateOptions evaluate_options;
+  problem->Evaluate(evaluate_options, nullptr, &residuals, nullptr, nullptr);
+  double rss = 0;
+  for (double r : residuals) rss += r * r;
+  const double n = static_cast<double>(residuals.size());
+  result.bic = n * std::log(std::max(rss, 1e-300) / n) + result.free_variables * std::log(n);
+
+  // Energy: the bound is built into the parameterization; report the albedo it allows.
+  const Model& model = result.model;
+  for (int c = 0; c < 3; ++c) {
+    result.energy.max_albedo[c] = model.Param("rho_d", c);
+    if (kind != LobeKind::kNone) {
+      result.energy.max_albedo[c] +=
+          LobeAlbedoAtNormal(kind, params[models::LobedSlots::kExponent]) * model.Param("rho_s", c);
+    }
+  }
+  result.energy.conserving = (result.energy.max_albedo <= 1.0 + 1e-12).all();
+  result.energy.method = "closed form at normal incidence: rho_d + A(exponent) rho_s";
+  for (int c = 0; c < 3; ++c) {
+    if (result.energy.max_albedo[c] > 0.999) {
+      result.warnings.push_back(std::string("energy bound active in channel ") + "rgb"[c] +
+                                ": the data ask for an albedo of 1 or more");
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+Robust ParseRobust(const std::string& name) {
+  if (name == "none") return Robust::kNone;
+  if (name == "huber") return Robust::kHuber;
+  if (name == "cauchy") return Robust::kCauchy;
+  throw UsageError("unknown robust loss '" + name + "' (known: none, huber, cauchy)");
+}
+
+const char* RobustName(Robust robust) {
+  switch (robust) {
+    case Robust::kNone:
+      return "none";
+    case Robust::kHuber:
+      return "huber";
+    case Robust::kCauchy:
+      return "cauchy";
+  }
+  return "?";
+}
+
+void FitOptions::Validate() const {
+  if (max_iterations < 1) throw UsageError("max_iterations must be at least 1");
+  if (samples_per_block < 1) throw UsageError("samples_per_block must be at least 1");
+  if (max_samples != 0 && max_samples < 100) {
+    throw UsageError("--max-samples must be 0 (all) or at least 100");
+  }
+  if (threads < 0) throw UsageError("--threads must not be negative");
+  if (start_exponents.empty()) throw UsageError("at least one start exponent is needed");
+  for (double exponent : start_exponents) {
+    if (!(exponent >= FitVariables::kMinExponent && exponent <= FitVariables::kMaxExponent)) {
+      throw UsageError("start exponents must lie in [1, 1e6]");
+    }
+  }
+}
+
+std::string FitResult::Summary() const {
+  std::ostringstream line;
+  line << model.ToString() << "  rmse " << metrics.rmse << " sr^-1, "
+       << (converged ? "converged" : "NOT converged") << ", " << samples << " samples, " << time_s
+       << " s";
+  return line.str();
+}
+
+FitResult FitModel(const Measurement& measurement, const std::string& model_name,
+                   const FitOptions& options) {
+  options.Validate();
+  // Ceres reports rank deficiency through glog warnings; the fit report says it in words.
+  static const bool quiet_ceres = [] {
+    FLAGS_minloglevel = google::GLOG_ERROR;
+    return true;
+  }();
+  (void)quiet_ceres;
+  const auto start = std::chrono::steady_clock::now();
+  const LobeKind kind = LobeKindOf(model_name);
+  const ModelInfo& info = FindModel(model_name);
+  const PreparedSamples prepared = PrepareSamples(measurement, options.loss);
+  FitResult result = VisitModelType(model_name, [&](auto model_type) {
+    return RunFit<decltype(model_type)>(kind, info, prepared, options);
+  });
+  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace brdf::fitters

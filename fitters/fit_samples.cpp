@@ -1,0 +1,216 @@
+#include "fitters/fit_samples.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+#include <tuple>
+
+#include "core/angles.h"
+#include "core/colour.h"
+#include "core/errors.h"
+#include "io/merl.h"
+
+namespace brdf::fitters {
+namespace {
+
+constexpr int kNearestNeighbours = 4;
+// Larger incidence groups would make the O(n^2) neighbour search slow; they keep equal weights
+// (and the report says so).
+constexpr size_t kMaxNeighbourGroup = 4096;
+
+bool IsMerlGrid(const Measurement& measurement) {
+  if (measurement.format == "merl") return true;
+  auto it = measurement.metadata.find("grid");
+  return it != measurement.metadata.end() && it->second.rfind("MERL", 0) == 0;
+}
+
+// dwi dwo of the MERL cell holding (wi, wo): 4 cos(theta_d) dw_h dw_d with phi_h integrated
+// out (isotropy), theta_h bins of width ((i+1)^2 - i^2) / 90^2 * pi/2.
+double MerlCellMeasure(const Vec3& wi, const Vec3& wo) {
+  const HalfDiff hd = ToHalfDiff(wi, wo);
+  const int i = MerlTable::ThetaHalfIndex(hd.theta_h);
+  const int j = MerlTable::ThetaDiffIndex(hd.theta_d);
+  const HalfDiff centre = MerlTable::CellCentre(i, j, 0);
+  const double n = MerlTable::kThetaHalfBins;
+  const double d_theta_h = ((i + 1) * (i + 1) - i * i) / (n * n) * (0.5 * kPi);
+  const double d_theta_d = 0.5 * kPi / MerlTable::kThetaDiffBins;
+  const double d_phi_d = kPi / MerlTable::kPhiDiffBins;
+  return 4.0 * std::cos(centre.theta_d) * std::sin(centre.theta_h) * std::sin(centre.theta_d) *
+         d_theta_h * d_theta_d * d_phi_d;
+}
+
+// Area of the detector directions nearest each sample of one incidence group, from the
+// distance r_k to its k-th nearest neighbour: area ~ pi r_k^2 / k.
+void NeighbourAreas(const std::vector<const Vec3*>& directions, std::vector<double>* areas) {
+  const size_t n = directions.size();
+  areas->assign(n, 1.0);
+  if (n <= kNearestNeighbours || n > kMaxNeighbourGroup) return;
+  std::vector<double> distances(n);
+  for (size_t a = 0; a < n; ++a) {
+    for (size_t b = 0; b < n; ++b) {
+      distances[b] = std::acos(std::clamp(directions[a]->dot(*directions[b]), -1.0, 1.0));
+    }
+    // distances[a] = 0 is the sample itself: the k-th neighbour is element k.
+    std::nth_element(distances.begin(), distances.begin() + kNearestNeighbours, distances.end());
+    const double r = distances[kNearestNeighbours];
+    (*areas)[a] = kPi * r * r / kNearestNeighbours;
+  }
+  // Coincident samples (e.g. Zemax's radial 0 repeated for every azimuth) share their area.
+  double smallest = 0;
+  for (double area : *areas) {
+    if (area > 0 && (smallest == 0 || area < smallest)) smallest = area;
+  }
+  for (double& area : *areas) area = std::max(area, 0.1 * smallest);
+}
+
+}  // namespace
+
+Loss ParseLoss(const std::string& name) {
+  if (name == "l2") return Loss::kL2;
+  if (name == "log") return Loss::kLog;
+  if (name == "cosine-l2") return Loss::kCosineL2;
+  throw UsageError("unknown loss '" + name + "' (known: l2, log, cosine-l2)");
+}
+
+const char* LossName(Loss loss) {
+  switch (loss) {
+    case Loss::kL2:
+      return "l2";
+    case Loss::kLog:
+      return "log";
+    case Loss::kCosineL2:
+      return "cosine-l2";
+  }
+  return "?";
+}
+
+PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
+  PreparedSamples prepared;
+  std::vector<size_t> source_index;
+  for (size_t k = 0; k < measurement.samples.size(); ++k) {
+    const Sample& sample = measurement.samples[k];
+    if (sample.missing) {
+      ++prepared.skipped_missing;
+      continue;
+    }
+    if (!sample.value.isFinite().all() || sample.wi.z() <= 0 || sample.wo.z() <= 0) {
+      ++prepared.skipped_invalid;
+      continue;
+    }
+    FitSample fit_sample;
+    fit_sample.wi = sample.wi;
+    fit_sample.wo = sample.wo;
+    fit_sample.cos_theta_i = sample.wi.z();
+    fit_sample.value = sample.value;
+    prepared.samples.push_back(fit_sample);
+    source_index.push_back(k);
+  }
+  std::vector<FitSample>& samples = prepared.samples;
+  if (samples.empty()) {
+    throw InputError(measurement.source, "no usable samples to fit (all missing or invalid)");
+  }
+
+  // Solid-angle weights.
+  if (IsMerlGrid(measurement)) {
+    for (FitSample& sample : samples) sample.weight = MerlCellMeasure(sample.wi, sample.wo);
+    prepared.weighting = "MERL cell measure 4 cos(theta_d) dw_h dw_d";
+  } else {
+    std::map<std::tuple<long long, long long, long long>, std::vector<size_t>> groups;
+    for (size_t k = 0; k < samples.size(); ++k) {
+      const Vec3& wi = samples[k].wi;
+      groups[{std::llround(wi.x() * 1e6), std::llround(wi.y() * 1e6), std::llround(wi.z() * 1e6)}]
+          .push_back(k);
+    }
+    bool capped = false;
+    for (const auto& [key, members] : groups) {
+      std::vector<const Vec3*> directions;
+      for (size_t k : members) directions.push_back(&samples[k].wo);
+      std::vector<double> areas;
+      NeighbourAreas(directions, &areas);
+      capped = capped || members.size() > kMaxNeighbourGroup;
+      for (size_t m = 0; m < members.size(); ++m) samples[members[m]].weight = areas[m];
+    }
+    prepared.weighting = "nearest-neighbour area per incidence direction (k = 4)";
+    if (capped) prepared.weighting += "; groups over 4096 samples weighted equally";
+  }
+  if (measurement.has_weight()) {
+    for (size_t k = 0; k < samples.size(); ++k) {
+      samples[k].weight *= measurement.weight[source_index[k]];
+    }
+    prepared.weighting += ", times the file's weight column";
+  }
+  const double total =
+      std::accumulate(samples.begin(), samples.end(), 0.0,
+                      [](double sum, const FitSample& s) { return sum + s.weight; });
+  if (!(total > 0)) throw InputError(measurement.source, "all sample weights are zero");
+  const double normalization = samples.size() / total;
+
+  // Sigma reweights samples relative to one another (a sample twice as noisy counts a quarter
+  // as much); its absolute scale does not matter because standard errors come from the
+  // residuals themselves (fit.cpp).
+  Rgb mean_sigma = Rgb::Ones();
+  if (measurement.has_sigma()) {
+    Rgb sum = Rgb::Zero();
+    for (size_t k : source_index) sum += measurement.sigma[k].square();
+    mean_sigma = (sum / static_cast<double>(source_index.size())).sqrt();
+  }
+  for (size_t k = 0; k < samples.size(); ++k) {
+    FitSample& sample = samples[k];
+    sample.weight *= normalization;
+    sample.scale = Rgb::Constant(std::sqrt(sample.weight));
+    if (measurement.has_sigma()) {
+      const Rgb& sigma = measurement.sigma[source_index[k]];
+      for (int c = 0; c < 3; ++c) {
+        if (sigma[c] > 0 && mean_sigma[c] > 0) sample.scale[c] *= mean_sigma[c] / sigma[c];
+      }
+    }
+    switch (loss) {
+      case Loss::kL2:
+        sample.target = sample.value;
+        break;
+      case Loss::kLog:
+        // Values below -1/cos would have no logarithm; out-of-gamut RGB is only slightly
+        // negative, so clamping there changes nothing real.
+        sample.target = (1.0 + (sample.value * sample.cos_theta_i).max(-0.999)).log();
+        break;
+      case Loss::kCosineL2:
+        sample.target = sample.value * sample.cos_theta_i;
+        break;
+    }
+  }
+  return prepared;
+}
+
+std::vector<FitSample> Subsample(const std::vector<FitSample>& samples, size_t max_samples,
+                                 uint64_t seed) {
+  if (max_samples == 0 || samples.size() <= max_samples) return samples;
+  std::vector<size_t> order(samples.size());
+  std::iota(order.begin(), order.end(), 0);
+  const size_t peak_count = std::min(samples.size() / 100, max_samples / 2);
+  // Peak: the brightest samples, all kept with their own weight.
+  std::nth_element(order.begin(), order.begin() + peak_count, order.end(), [&](size_t a, size_t b) {
+    const double la = Luminance(samples[a].value), lb = Luminance(samples[b].value);
+    return la > lb || (la == lb && a < b);
+  });
+  std::sort(order.begin() + peak_count, order.end());  // deterministic order for the draw
+  std::vector<FitSample> subset;
+  subset.reserve(max_samples);
+  for (size_t k = 0; k < peak_count; ++k) subset.push_back(samples[order[k]]);
+  // The rest: a seeded partial Fisher-Yates draw.
+  std::mt19937_64 random(seed);
+  const size_t rest = samples.size() - peak_count, drawn = max_samples - peak_count;
+  for (size_t k = 0; k < drawn; ++k) {
+    std::uniform_int_distribution<size_t> pick(k, rest - 1);
+    std::swap(order[peak_count + k], order[peak_count + pick(random)]);
+    FitSample sample = samples[order[peak_count + k]];
+    const double inverse_inclusion = static_cast<double>(rest) / drawn;
+    sample.weight *= inverse_inclusion;
+    sample.scale *= std::sqrt(inverse_inclusion);
+    subset.push_back(sample);
+  }
+  return subset;
+}
+
+}  // namespace brdf::fitters

@@ -1,0 +1,56 @@
+// Turning a Measurement into the samples a fit uses: which samples count, how much each
+// weighs, and the transformed targets of each loss (DESIGN §6).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/measurement.h"
+#include "core/vec.h"
+
+namespace brdf::fitters {
+
+enum class Loss {
+  kL2,        // f_model - f_data
+  kLog,       // log(1 + f_model cos theta_i) - log(1 + f_data cos theta_i)  (Löw et al. 2012)
+  kCosineL2,  // (f_model - f_data) cos theta_i  (Ngan, Durand & Matusik 2005)
+};
+Loss ParseLoss(const std::string& name);
+const char* LossName(Loss loss);
+
+struct FitSample {
+  Vec3 wi, wo;
+  double cos_theta_i = 0;
+  Rgb target = Rgb::Zero();  // the data, transformed by the loss (log loss: log(1 + f cos theta_i))
+  Rgb value = Rgb::Zero();   // the data in sr^-1
+  Rgb scale = Rgb::Ones();   // sqrt(weight) / sigma per channel: the residual multiplier
+  double weight = 1;         // solid-angle weight times the file's weight (mean 1 over the set)
+};
+
+struct PreparedSamples {
+  std::vector<FitSample> samples;
+  size_t skipped_missing = 0;  // flagged missing
+  size_t skipped_invalid = 0;  // NaN/Inf values, or a direction at or below the horizon
+  std::string weighting;       // how the solid-angle weights were found
+};
+
+// Selects the usable samples, weights each by the solid angle it represents and applies the
+// loss's transform. Weights:
+//  * MERL grid: the exact measure of the cell, 4 cos(theta_d) sin(theta_h) sin(theta_d)
+//    dtheta_h dtheta_d dphi_d (dwi dwo in half/difference angles; Rusinkiewicz 1998), with
+//    the sqrt-warped theta_h widths.
+//  * scattered data: per incidence direction, the area of the detector directions closest to
+//    each sample, estimated from the distance to its k-th nearest neighbour (k = 4).
+// Weights are normalized to mean 1; the file's weight column multiplies them and its sigma
+// columns divide the residuals.
+PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss);
+
+// A deterministic stratified subsample of at most `max_samples`: every sample in the top 1% by
+// luminance (the specular peak, which a uniform draw would miss) plus a seeded uniform draw of
+// the rest, whose weights are scaled by the inverse of their inclusion probability so the
+// subsample's objective estimates the full one.
+std::vector<FitSample> Subsample(const std::vector<FitSample>& samples, size_t max_samples,
+                                 uint64_t seed);
+
+}  // namespace brdf::fitters

@@ -1,0 +1,121 @@
+#include "fitters/report.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace brdf::fitters {
+namespace {
+
+// A parameter as JSON: [r, g, b] or a number; NaN (not available) becomes null.
+nlohmann::json ParamJson(const ParamInfo& param, const std::vector<double>& values) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  if (param.channels == 1) return number(values[param.slot]);
+  nlohmann::json array = nlohmann::json::array();
+  for (int c = 0; c < param.channels; ++c) array.push_back(number(values[param.slot + c]));
+  return array;
+}
+
+std::string Numbers(const ParamInfo& param, const std::vector<double>& values) {
+  std::string text;
+  char buffer[32];
+  for (int c = 0; c < param.channels; ++c) {
+    const double value = values[param.slot + c];
+    if (std::isfinite(value)) {
+      std::snprintf(buffer, sizeof(buffer), "%-12.6g", value);
+    } else {
+      std::snprintf(buffer, sizeof(buffer), "%-12s", "n/a");
+    }
+    text += buffer;
+  }
+  return text;
+}
+
+}  // namespace
+
+nlohmann::json FitReportJson(const FitResult& fit, const std::string& source,
+                             const Selection* selection) {
+  nlohmann::json json;
+  json["model"] = fit.model.name();
+  json["model_string"] = fit.model.ToString();
+  for (const ParamInfo& param : fit.model.info().params) {
+    json["params"][param.name] = ParamJson(param, fit.model.params());
+    json["stderr"][param.name] = ParamJson(param, fit.stderr_values);
+  }
+  if (!fit.stderr_available) json["stderr_note"] = fit.stderr_note;
+  json["metrics"] = {{"rmse", fit.metrics.rmse},
+                     {"log_rmse", fit.metrics.log_rmse},
+                     {"cosine_l2", fit.metrics.cosine_l2}};
+  json["loss"] = LossName(fit.loss);
+  json["robust"] = RobustName(fit.robust);
+  json["samples"] = fit.samples;
+  json["skipped"] = fit.skipped;
+  json["weighting"] = fit.weighting;
+  json["converged"] = fit.converged;
+  json["iterations"] = fit.iterations;
+  json["time_s"] = fit.time_s;
+  json["bic"] = fit.bic;
+  json["termination"] = fit.termination;
+  json["energy"] = {
+      {"max_albedo",
+       {fit.energy.max_albedo[0], fit.energy.max_albedo[1], fit.energy.max_albedo[2]}},
+      {"conserving", fit.energy.conserving},
+      {"method", fit.energy.method}};
+  json["warnings"] = fit.warnings;
+  json["source"] = source;
+  if (selection != nullptr) {
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const CandidateScore& candidate : selection->candidates) {
+      candidates.push_back({{"model", candidate.model},
+                            {"bic", candidate.bic},
+                            {"rmse", candidate.rmse},
+                            {"free_variables", candidate.free_variables},
+                            {"converged", candidate.converged}});
+    }
+    json["selection"] = {{"criterion", selection->criterion},
+                         {"chosen", selection->chosen},
+                         {"reason", selection->reason},
+                         {"candidates", candidates}};
+  }
+  return json;
+}
+
+void PrintFitReport(std::ostream& out, const FitResult& fit, const std::string& source,
+                    const Selection* selection) {
+  char line[512];
+  out << "source      " << source << "\n";
+  out << "model       " << fit.model.name() << "   (" << fit.model.ToString() << ")\n";
+  if (selection != nullptr) {
+    out << "selection   " << selection->reason << "\n";
+    for (const CandidateScore& candidate : selection->candidates) {
+      std::snprintf(line, sizeof(line), "            %-18s BIC %-14.8g rmse %.4g%s\n",
+                    candidate.model.c_str(), candidate.bic, candidate.rmse,
+                    candidate.converged ? "" : "  (not converged)");
+      out << line;
+    }
+  }
+  out << "parameter   value (r g b)                           ± standard error\n";
+  for (const ParamInfo& param : fit.model.info().params) {
+    std::snprintf(line, sizeof(line), "%-11s %-39s ± %s\n", param.name.c_str(),
+                  Numbers(param, fit.model.params()).c_str(),
+                  fit.stderr_available ? Numbers(param, fit.stderr_values).c_str() : "n/a");
+    out << line;
+  }
+  if (!fit.stderr_available) out << "stderr      " << fit.stderr_note << "\n";
+  std::snprintf(line, sizeof(line),
+                "metrics     rmse %.6g sr^-1, log_rmse %.6g, cosine_l2 %.6g (%s loss, robust %s)\n",
+                fit.metrics.rmse, fit.metrics.log_rmse, fit.metrics.cosine_l2, LossName(fit.loss),
+                RobustName(fit.robust));
+  out << line;
+  out << "samples     " << fit.samples << " fitted, " << fit.skipped << " missing or invalid; "
+      << fit.weighting << "\n";
+  std::snprintf(line, sizeof(line), "solve       %s, %d iterations, %.3f s\n",
+                fit.converged ? "converged" : "NOT CONVERGED", fit.iterations, fit.time_s);
+  out << line;
+  std::snprintf(line, sizeof(line), "energy      max albedo %.4f %.4f %.4f: %s\n",
+                fit.energy.max_albedo[0], fit.energy.max_albedo[1], fit.energy.max_albedo[2],
+                fit.energy.conserving ? "conserving" : "NOT conserving");
+  out << line;
+  for (const std::string& warning : fit.warnings) out << "warning     " << warning << "\n";
+}
+
+}  // namespace brdf::fitters

@@ -1,0 +1,67 @@
+// The Ceres residual: a small templated functor over raw parameter arrays, so one definition
+// serves double and ceres::Jet (automatic differentiation), after Ceres' own examples. Each
+// block holds a batch of samples rather than one: with ~1e6 samples, per-block overhead would
+// dominate, and batches still let Ceres spread blocks over threads (docs/fitting.md measures
+// the batch size).
+#pragma once
+
+#include <cmath>
+
+#include "fitters/fit_samples.h"
+#include "fitters/parameterization.h"
+
+namespace brdf::fitters {
+
+template <typename ModelType>
+class BatchResidual {
+ public:
+  BatchResidual(LobeKind kind, bool grey_specular, Loss loss, const FitSample* samples, int count)
+      : kind_(kind), grey_specular_(grey_specular), loss_(loss), samples_(samples), count_(count) {}
+
+  int num_residuals() const { return 3 * count_; }
+
+  // lambert: one parameter block, d[3].
+  template <typename T>
+  bool operator()(const T* d, T* residuals) const {
+    T params[ModelType::kNumParams];
+    VariablesToParams<T>(kind_, grey_specular_, d, nullptr, nullptr, params);
+    return Residuals(params, residuals);
+  }
+
+  // Lobed models: d[3], s[1 or 3], log_m[1].
+  template <typename T>
+  bool operator()(const T* d, const T* s, const T* log_m, T* residuals) const {
+    T params[ModelType::kNumParams];
+    VariablesToParams(kind_, grey_specular_, d, s, log_m, params);
+    return Residuals(params, residuals);
+  }
+
+ private:
+  template <typename T>
+  bool Residuals(const T* params, T* residuals) const {
+    using std::log;
+    for (int k = 0; k < count_; ++k) {
+      const FitSample& sample = samples_[k];
+      const Vec3T<T> wi = sample.wi.cast<T>(), wo = sample.wo.cast<T>();
+      const RgbT<T> f = ModelType::template Eval<T>(params, wi, wo);
+      for (int c = 0; c < 3; ++c) {
+        T predicted = f[c];
+        if (loss_ == Loss::kLog) {
+          predicted = log(T(1) + f[c] * sample.cos_theta_i);
+        } else if (loss_ == Loss::kCosineL2) {
+          predicted = f[c] * sample.cos_theta_i;
+        }
+        residuals[3 * k + c] = (predicted - sample.target[c]) * sample.scale[c];
+      }
+    }
+    return true;
+  }
+
+  LobeKind kind_;
+  bool grey_specular_;
+  Loss loss_;
+  const FitSample* samples_;
+  int count_;
+};
+
+}  // namespace brdf::fitters
