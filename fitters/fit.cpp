@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 #include <glog/logging.h>
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -25,6 +26,8 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // |logistic variable| beyond which its derivative (< 1e-10) no longer informs the covariance.
 constexpr double kSaturated = 23.0;
+// Reweighting rounds of the robust fit on the subsample (fit, reweight, refit).
+constexpr int kRobustRounds = 4;
 
 // The fitter's free variables (parameterization.h); s[0] alone when the lobe is grey.
 struct Variables {
@@ -79,12 +82,12 @@ class ModelFitter {
     return v;
   }
 
-  // A problem over `samples` (which must outlive it), with `loss` not owned.
-  std::unique_ptr<ceres::Problem> BuildProblem(const std::vector<FitSample>& samples, Variables* v,
-                                               ceres::LossFunction* loss) const {
-    ceres::Problem::Options problem_options;
-    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    auto problem = std::make_unique<ceres::Problem>(problem_options);
+  // A least-squares problem over `samples`, which must outlive it. Robust losses act per
+  // sample through Reweight, not per (batched) residual block.
+  std::unique_ptr<ceres::Problem> BuildProblem(const std::vector<FitSample>& samples,
+                                               Variables* v) const {
+    auto problem = std::make_unique<ceres::Problem>();
+    ceres::LossFunction* const loss = nullptr;
     const int block = options_.samples_per_block;
     for (size_t start = 0; start < samples.size(); start += block) {
       const int count = static_cast<int>(std::min<size_t>(block, samples.size() - start));
@@ -144,18 +147,59 @@ class ModelFitter {
     return {v->d, v->s, v->log_m};
   }
 
-  // Robust scale: 3 x the residuals' robust standard deviation (1.4826 MAD) at the non-robust
-  // optimum, so inliers stay in the quadratic part and outliers are down-weighted.
-  double RobustScale(ceres::Problem* problem) const {
-    std::vector<double> residuals;
-    problem->Evaluate(ceres::Problem::EvaluateOptions(), nullptr, &residuals, nullptr, nullptr);
-    for (double& r : residuals) r = std::abs(r);
-    const size_t middle = residuals.size() / 2;
-    std::nth_element(residuals.begin(), residuals.begin() + middle, residuals.end());
-    double rms = 0;
-    for (double r : residuals) rms += r * r;
-    rms = std::sqrt(rms / residuals.size());
-    return std::max(3.0 * 1.4826 * residuals[middle], 1e-9 * std::max(rms, 1.0));
+  // Squared norm of each sample's (3-channel) weighted residual at `v`, from the same functor
+  // Ceres differentiates.
+  std::vector<double> SquaredResiduals(const std::vector<FitSample>& samples,
+                                       const Variables& v) const {
+    std::vector<double> squared(samples.size());
+    tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
+      const BatchResidual<ModelType> residual(kind_, options_.grey_specular, options_.loss,
+                                              &samples[k], 1);
+      double r[3];
+      if (lobed_) {
+        residual(v.d, v.s, v.log_m, r);
+      } else {
+        residual(v.d, r);
+      }
+      squared[k] = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    });
+    return squared;
+  }
+
+  // Iteratively reweighted least squares for a robust loss rho (Huber or Cauchy, evaluated by
+  // Ceres' own loss functions): each sample's residual is scaled by sqrt(rho'(s_i)) at the
+  // current fit, s_i its squared residual norm. The loss acts per sample — a blind spot zeroes
+  // one sample, not a whole residual block. The scale is 3 x the robust standard deviation
+  // (1.4826 x median absolute residual), so inliers stay in the quadratic part.
+  std::vector<FitSample> Reweight(const std::vector<FitSample>& samples, const Variables& v,
+                                  double* scale) const {
+    const std::vector<double> squared = SquaredResiduals(samples, v);
+    if (*scale <= 0) {
+      std::vector<double> norms(squared.size());
+      double mean_square = 0;
+      for (size_t k = 0; k < squared.size(); ++k) {
+        norms[k] = std::sqrt(squared[k]);
+        mean_square += squared[k];
+      }
+      const size_t middle = norms.size() / 2;
+      std::nth_element(norms.begin(), norms.begin() + middle, norms.end());
+      mean_square /= std::max<size_t>(1, squared.size());
+      *scale =
+          std::max(3.0 * 1.4826 * norms[middle], 1e-9 * std::max(std::sqrt(mean_square), 1e-12));
+    }
+    std::unique_ptr<ceres::LossFunction> loss;
+    if (options_.robust == Robust::kHuber) {
+      loss = std::make_unique<ceres::HuberLoss>(*scale);
+    } else {
+      loss = std::make_unique<ceres::CauchyLoss>(*scale);
+    }
+    std::vector<FitSample> weighted = samples;
+    for (size_t k = 0; k < samples.size(); ++k) {
+      double rho[3];
+      loss->Evaluate(squared[k], rho);
+      weighted[k].scale *= std::sqrt(std::max(rho[1], 0.0));
+    }
+    return weighted;
   }
 
   // Sandwich (Huber-White) covariance of the variables, A^-1 B A^-1: A^-1 from
@@ -188,6 +232,13 @@ class ModelFitter {
       }
       if (static_cast<int>(constant.size()) == sizes[b]) {
         problem->SetParameterBlockConstant(blocks[b]);
+        // A lobe share at its lower bound in every channel: the lobe has vanished and its
+        // exponent shapes nothing, so it cannot have a standard error either.
+        if (blocks[b] == v->s && blocks[b][0] < 0) {
+          problem->SetParameterBlockConstant(v->log_m);
+          held[offsets.back()] = true;
+          *note = "the lobe vanished (rho_s at 0): its exponent is not identifiable";
+        }
       } else if (!constant.empty()) {
         problem->SetManifold(blocks[b], new ceres::SubsetManifold(sizes[b], constant));
       }
@@ -340,7 +391,7 @@ FitResult RunFit(LobeKind kind, const ModelInfo& info, const PreparedSamples& pr
   int iterations = 0;
   for (double exponent : starts) {
     Variables trial = fitter.InitialGuess(subset, exponent);
-    auto problem = fitter.BuildProblem(subset, &trial, nullptr);
+    auto problem = fitter.BuildProblem(subset, &trial);
     const ceres::Solver::Summary summary = fitter.Solve(problem.get(), options.start_iterations);
     iterations += static_cast<int>(summary.iterations.size());
     if (std::isfinite(summary.final_cost) && summary.final_cost < best_cost) {
@@ -350,20 +401,16 @@ FitResult RunFit(LobeKind kind, const ModelInfo& info, const PreparedSamples& pr
   }
   if (!std::isfinite(best_cost)) throw ComputeError("every start of the fit failed");
 
-  // 2. Refine the best start on the subsample; choose the robust scale there.
-  std::unique_ptr<ceres::LossFunction> robust_loss;
+  // 2. Refine the best start on the subsample. A robust loss re-estimates its scale from
+  // each round's residuals: the first estimate is inflated by the bias the outliers caused.
   {
-    auto problem = fitter.BuildProblem(subset, &best, nullptr);
+    auto problem = fitter.BuildProblem(subset, &best);
     iterations +=
         static_cast<int>(fitter.Solve(problem.get(), options.max_iterations).iterations.size());
-    if (options.robust != Robust::kNone) {
-      const double scale = fitter.RobustScale(problem.get());
-      if (options.robust == Robust::kHuber) {
-        robust_loss = std::make_unique<ceres::HuberLoss>(scale);
-      } else {
-        robust_loss = std::make_unique<ceres::CauchyLoss>(scale);
-      }
-      auto robust_problem = fitter.BuildProblem(subset, &best, robust_loss.get());
+    for (int round = 0; options.robust != Robust::kNone && round < kRobustRounds; ++round) {
+      double scale = 0;  // estimated afresh
+      const std::vector<FitSample> weighted = fitter.Reweight(subset, best, &scale);
+      auto robust_problem = fitter.BuildProblem(weighted, &best);
       iterations += static_cast<int>(
           fitter.Solve(robust_problem.get(), options.max_iterations).iterations.size());
     }
@@ -371,7 +418,14 @@ FitResult RunFit(LobeKind kind, const ModelInfo& info, const PreparedSamples& pr
 
   // 3. Polish on every sample (the final solve, whose convergence is reported).
   Variables final_variables = best;
-  auto problem = fitter.BuildProblem(all, &final_variables, robust_loss.get());
+  std::vector<FitSample> final_samples;
+  if (options.robust != Robust::kNone) {
+    double scale = 0;
+    final_samples = fitter.Reweight(all, best, &scale);
+  }
+  const std::vector<FitSample>& polish_samples =
+      options.robust == Robust::kNone ? all : final_samples;
+  auto problem = fitter.BuildProblem(polish_samples, &final_variables);
   const ceres::Solver::Summary summary = fitter.Solve(problem.get(), options.max_iterations);
   iterations += static_cast<int>(summary.iterations.size());
 

