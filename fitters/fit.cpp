@@ -392,7 +392,8 @@ FitResult RunFit(LobeKind kind, const ModelInfo& info, const PreparedSamples& pr
   for (double exponent : starts) {
     Variables trial = fitter.InitialGuess(subset, exponent);
     auto problem = fitter.BuildProblem(subset, &trial);
-    const ceres::Solver::Summary summary = fitter.Solve(problem.get(), options.start_iterations);
+    const ceres::Solver::Summary summary =
+        fitter.Solve(problem.get(), std::min(options.start_iterations, options.max_iterations));
     iterations += static_cast<int>(summary.iterations.size());
     if (std::isfinite(summary.final_cost) && summary.final_cost < best_cost) {
       best_cost = summary.final_cost;

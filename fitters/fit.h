@@ -32,7 +32,7 @@ struct FitOptions {
   // Multi-start: exponents tried from the data-driven guess of rho_d and rho_s; log-spaced
   // over the range real materials span (~1 to ~1e5).
   std::vector<double> start_exponents = {2, 8, 32, 128, 512, 2048, 8192, 32768};
-  int start_iterations = 30;  // iterations per start before the best is refined
+  int start_iterations = 30;  // iterations per start (at most max_iterations)
 
   // Throws UsageError naming the bad field.
   void Validate() const;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "core/angles.h"
@@ -14,6 +15,7 @@
 #include "fitters/residual.h"
 #include "fitters/select.h"
 #include "io/formats.h"
+#include "models/model_source.h"
 #include "models/model_string.h"
 #include "test_util.h"
 
@@ -225,6 +227,81 @@ TEST(FitParameterization, EveryVariableValueIsAConservingMaterial) {
         EXPECT_LE(rho_d + fitters::LobeAlbedoAtNormal(kind, m) * rho_s, 1.0 + 1e-12);
       }
     }
+  }
+}
+
+}  // namespace
+}  // namespace brdf
+
+namespace brdf {
+namespace {
+
+// Real measurements: every fit completes, converges and conserves energy; the metrics are
+// pinned (regression values from this implementation, docs/fitting.md) so a change in the
+// fitter's behaviour shows up here.
+TEST(FitRealData, CornellAndZemaxFitsArePinned) {
+  struct Pinned {
+    const char* file;
+    double rmse;
+  };
+  const Pinned pinned[] = {
+      {"cornell-astm/acryl_blue.astm", 0.6679194458637318},
+      {"cornell-astm/cayman.astm", 21.19616488538395},
+      {"cornell-astm/garnet_red.astm", 1.0871584832864811},
+      {"cornell-astm/krylon_blue.astm", 1.6731270098386417},
+      {"zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf", 0.17824090498536144},
+  };
+  for (const Pinned& expected : pinned) {
+    const Measurement measurement = ReadMeasurement(testing::DataPath(expected.file));
+    const FitResult fit = FitModel(measurement, "blinn-phong", FitOptions{});
+    EXPECT_TRUE(fit.converged) << expected.file << ": " << fit.termination;
+    EXPECT_TRUE(fit.energy.conserving) << expected.file;
+    EXPECT_LT(fit.energy.max_albedo.maxCoeff(), 1.0) << expected.file;
+    EXPECT_NEAR(fit.metrics.rmse, expected.rmse, 1e-3 * expected.rmse) << expected.file;
+    for (double p : fit.model.params()) EXPECT_TRUE(std::isfinite(p)) << expected.file;
+  }
+}
+
+TEST(FitCli, WritesTheReportAndItIsAcceptedAsAModel) {
+  testing::ScratchDir dir;
+  const std::string report = dir.File("fit.json");
+  const testing::CommandResult fit = testing::RunBrdf(
+      "fit '" + testing::DataPath("zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf") +
+      "' --model phong --out '" + report + "'");
+  ASSERT_EQ(fit.exit_status, 0) << fit.err;
+  EXPECT_NE(fit.out.find("phong"), std::string::npos);
+  const nlohmann::json json = nlohmann::json::parse(testing::ReadFileText(report));
+  for (const char* key : {"model", "params", "stderr", "metrics", "samples", "converged",
+                          "iterations", "time_s", "energy", "source"}) {
+    EXPECT_TRUE(json.contains(key)) << key;
+  }
+  EXPECT_EQ(json["params"]["rho_d"].size(), 3u);
+  EXPECT_TRUE(json["params"]["n"].is_number());
+  EXPECT_TRUE(json["energy"]["conserving"].get<bool>());
+  const Model model = LoadModel(report);
+  EXPECT_EQ(model.name(), "phong");
+  EXPECT_EQ(model.Param("n"), json["params"]["n"].get<double>());
+}
+
+TEST(FitCli, NonConvergenceExitsThreeAndStillWritesTheReport) {
+  testing::ScratchDir dir;
+  const std::string report = dir.File("fit.json");
+  const testing::CommandResult fit =
+      testing::RunBrdf("fit '" + testing::DataPath("cornell-astm/cayman.astm") +
+                       "' --model blinn-phong --max-iterations 1 --out '" + report + "'");
+  EXPECT_EQ(fit.exit_status, 3) << fit.err;
+  const nlohmann::json json = nlohmann::json::parse(testing::ReadFileText(report));
+  EXPECT_FALSE(json["converged"].get<bool>());
+}
+
+TEST(FitCli, BadOptionsAreUsageErrors) {
+  const std::string file = "'" + testing::DataPath("cornell-astm/cayman.astm") + "'";
+  for (const char* options :
+       {"--model cook-torrance", "--loss l1", "--robust tukey", "--max-samples 5"}) {
+    const testing::CommandResult result =
+        testing::RunBrdf("fit " + file + " " + std::string(options));
+    EXPECT_EQ(result.exit_status, 2) << options << ": " << result.err;
+    EXPECT_EQ(testing::CountLines(result.err), 1) << result.err;
   }
 }
 

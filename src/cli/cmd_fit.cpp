@@ -19,7 +19,7 @@ Command AddFitCommand(CLI::App& parent) {
     std::string path, model = "auto", loss = "l2", robust = "none", out, illuminant = "D65";
     size_t max_samples = 20000;
     uint64_t seed = 1;
-    int threads = 0;
+    int threads = 0, max_iterations = fitters::FitOptions{}.max_iterations;
     bool grey_specular = false, json = false;
   };
   auto options = std::make_shared<Options>();
@@ -43,6 +43,10 @@ Command AddFitCommand(CLI::App& parent) {
   app->add_option("--seed", options->seed, "seed of the subsample draw")->capture_default_str();
   app->add_option("--threads", options->threads, "Ceres threads (0: all cores)")
       ->capture_default_str();
+  app->add_option("--max-iterations", options->max_iterations,
+                  "iterations of each Ceres solve; a fit that needs more is reported as not "
+                  "converged (exit status 3)")
+      ->capture_default_str();
   app->add_flag("--grey-specular", options->grey_specular, "one rho_s for all channels");
   app->add_option("--illuminant", options->illuminant, "for spectral files: D65 or E")
       ->capture_default_str();
@@ -56,6 +60,7 @@ Command AddFitCommand(CLI::App& parent) {
             fit_options.max_samples = options->max_samples;
             fit_options.seed = options->seed;
             fit_options.threads = options->threads;
+            fit_options.max_iterations = options->max_iterations;
             fit_options.grey_specular = options->grey_specular;
             fit_options.Validate();
             ReadOptions read_options;
