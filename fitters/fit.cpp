@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -26,6 +27,11 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // |logistic variable| beyond which its derivative (< 1e-10) no longer informs the covariance.
 constexpr double kSaturated = 23.0;
+// Smallest eigenvalue of J^T J, relative to the largest, for the variables to count as
+// identifiable.
+constexpr double kRankTolerance = 1e-13;
+// Samples each start of the multi-start is solved on.
+constexpr size_t kStartSamples = 4000;
 // Reweighting rounds of the robust fit on the subsample (fit, reweight, refit).
 constexpr int kRobustRounds = 4;
 
@@ -202,95 +208,116 @@ class ModelFitter {
     return weighted;
   }
 
-  // Sandwich (Huber-White) covariance of the variables, A^-1 B A^-1: A^-1 from
-  // ceres::Covariance, B = sum_i J_i^T J_i r_i^2 from one pass over the residual blocks. It
-  // stays right when the weights or sigmas do not match the true noise.
-  bool Covariance(ceres::Problem* problem, Variables* v, Eigen::MatrixXd* covariance,
+  // Sandwich (Huber-White) covariance of the variables, A^-1 B A^-1 with A = sum J_i^T J_i
+  // and B = sum J_i^T J_i r_i^2, accumulated in one parallel pass over the residual blocks. It
+  // stays right when the weights or sigmas do not match the true noise. (ceres::Covariance
+  // computes A^-1 by a sparse QR of the whole Jacobian: 4.9 s of an 8.9 s fit of a MERL table;
+  // the 7x7 A from the same Jacobians costs one pass — docs/fitting.md.)
+  //
+  // A logistic variable pushed against its bound (a parameter at 0, an albedo budget used up)
+  // has a vanishing derivative and would make A singular: such variables are held out, and
+  // the parameters that depend on them are reported as "not available". A lobe share at its
+  // lower bound in every channel means the lobe vanished; its exponent shapes nothing and is
+  // held out too.
+  bool Covariance(ceres::Problem* problem, const Variables& v, Eigen::MatrixXd* covariance,
                   std::string* note) const {
-    const std::vector<double*> blocks = Blocks(v);
+    std::vector<double*> blocks;
     std::vector<int> sizes;
-    for (double* block : blocks) sizes.push_back(problem->ParameterBlockSize(block));
-    int n = 0;
-    std::vector<int> offsets;
-    for (int size : sizes) {
-      offsets.push_back(n);
-      n += size;
+    const int s_size = lobed_ ? (options_.grey_specular ? 1 : 3) : 0;
+    Variables at = v;
+    blocks.push_back(at.d);
+    sizes.push_back(3);
+    if (lobed_) {
+      blocks.insert(blocks.end(), {at.s, at.log_m});
+      sizes.insert(sizes.end(), {s_size, 1});
     }
-    // A logistic variable pushed against its bound (a parameter at 0, or an albedo budget
-    // used up) has a vanishing derivative, which would make the whole covariance singular. Hold
-    // such coordinates constant, so the others still get standard errors; the held ones are
-    // reported as "at the bound".
+    const int n = 3 + (lobed_ ? s_size + 1 : 0);
     std::vector<bool> held(n, false);
-    for (size_t b = 0; b < blocks.size(); ++b) {
-      if (blocks[b] == v->log_m) continue;
-      std::vector<int> constant;
-      for (int k = 0; k < sizes[b]; ++k) {
-        if (std::abs(blocks[b][k]) >= kSaturated) {
-          constant.push_back(k);
-          held[offsets[b] + k] = true;
-        }
-      }
-      if (static_cast<int>(constant.size()) == sizes[b]) {
-        problem->SetParameterBlockConstant(blocks[b]);
-        // A lobe share at its lower bound in every channel: the lobe has vanished and its
-        // exponent shapes nothing, so it cannot have a standard error either.
-        if (blocks[b] == v->s && blocks[b][0] < 0) {
-          problem->SetParameterBlockConstant(v->log_m);
-          held[offsets.back()] = true;
-          *note = "the lobe vanished (rho_s at 0): its exponent is not identifiable";
-        }
-      } else if (!constant.empty()) {
-        problem->SetManifold(blocks[b], new ceres::SubsetManifold(sizes[b], constant));
+    bool lobe_vanished = lobed_;
+    for (int k = 0; k < 3; ++k) held[k] = std::abs(v.d[k]) >= kSaturated;
+    for (int k = 0; k < s_size; ++k) {
+      held[3 + k] = std::abs(v.s[k]) >= kSaturated;
+      lobe_vanished = lobe_vanished && v.s[k] <= -kSaturated;
+    }
+    if (lobe_vanished) {
+      held[n - 1] = true;
+      *note = "the lobe vanished (rho_s at 0): its exponent is not identifiable";
+    }
+
+    std::vector<ceres::ResidualBlockId> residual_blocks;
+    problem->GetResidualBlocks(&residual_blocks);
+    struct Sums {
+      Eigen::MatrixXd a, b;
+    };
+    const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
+    const Sums sums = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, residual_blocks.size()), Sums{zero, zero},
+        [&](const tbb::blocked_range<size_t>& range, Sums partial) {
+          std::vector<double> residuals;
+          std::vector<std::vector<double>> jacobians(blocks.size());
+          std::vector<double*> jacobian_pointers(blocks.size());
+          Eigen::VectorXd row(n);
+          for (size_t index = range.begin(); index < range.end(); ++index) {
+            const ceres::CostFunction* cost =
+                problem->GetCostFunctionForResidualBlock(residual_blocks[index]);
+            const int rows = cost->num_residuals();
+            residuals.resize(rows);
+            for (size_t b = 0; b < blocks.size(); ++b) {
+              jacobians[b].resize(rows * sizes[b]);
+              jacobian_pointers[b] = jacobians[b].data();
+            }
+            cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data());
+            for (int r = 0; r < rows; ++r) {
+              int column = 0;
+              for (size_t b = 0; b < blocks.size(); ++b) {
+                for (int k = 0; k < sizes[b]; ++k) row[column++] = jacobians[b][r * sizes[b] + k];
+              }
+              partial.a.template selfadjointView<Eigen::Lower>().rankUpdate(row);
+              partial.b.template selfadjointView<Eigen::Lower>().rankUpdate(
+                  row, residuals[r] * residuals[r]);
+            }
+          }
+          return partial;
+        },
+        [](Sums x, const Sums& y) {
+          x.a += y.a;
+          x.b += y.b;
+          return x;
+        });
+
+    // Invert A on the free (not held) variables.
+    std::vector<int> free;
+    for (int k = 0; k < n; ++k) {
+      if (!held[k]) free.push_back(k);
+    }
+    const int m = static_cast<int>(free.size());
+    Eigen::MatrixXd a(m, m), b(m, m);
+    const Eigen::MatrixXd full_a = sums.a.template selfadjointView<Eigen::Lower>();
+    const Eigen::MatrixXd full_b = sums.b.template selfadjointView<Eigen::Lower>();
+    for (int i = 0; i < m; ++i) {
+      for (int j = 0; j < m; ++j) {
+        a(i, j) = full_a(free[i], free[j]);
+        b(i, j) = full_b(free[i], free[j]);
       }
     }
-    ceres::Covariance::Options covariance_options;
-    covariance_options.num_threads = 2;
-    ceres::Covariance ceres_covariance(covariance_options);
-    std::vector<std::pair<const double*, const double*>> pairs;
-    for (double* a : blocks) {
-      for (double* b : blocks) pairs.emplace_back(a, b);
+    *covariance = Eigen::MatrixXd::Zero(n, n);
+    for (int k = 0; k < n; ++k) {
+      if (held[k]) (*covariance)(k, k) = kNaN;  // marks "held" for ParamStderr
     }
-    if (!ceres_covariance.Compute(pairs, problem)) {
+    if (m == 0) return true;  // every variable is at a bound
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(a);
+    const Eigen::VectorXd values = eigen.eigenvalues();
+    if (!(values.minCoeff() > kRankTolerance * values.maxCoeff())) {
       *note =
           "rank-deficient: not every parameter is identifiable from these data (for example a "
           "lobe fitted to matte data leaves the exponent free)";
       return false;
     }
-    Eigen::MatrixXd a_inverse(n, n);
-    for (size_t i = 0; i < blocks.size(); ++i) {
-      for (size_t j = 0; j < blocks.size(); ++j) {
-        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> part(sizes[i],
-                                                                                    sizes[j]);
-        ceres_covariance.GetCovarianceBlock(blocks[i], blocks[j], part.data());
-        a_inverse.block(offsets[i], offsets[j], sizes[i], sizes[j]) = part;
-      }
-    }
-    std::vector<ceres::ResidualBlockId> residual_blocks;
-    problem->GetResidualBlocks(&residual_blocks);
-    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(n, n);
-    std::vector<double> residuals;
-    std::vector<std::vector<double>> jacobians(blocks.size());
-    std::vector<double*> jacobian_pointers(blocks.size());
-    for (ceres::ResidualBlockId id : residual_blocks) {
-      const ceres::CostFunction* cost = problem->GetCostFunctionForResidualBlock(id);
-      const int rows = cost->num_residuals();
-      residuals.resize(rows);
-      for (size_t b = 0; b < blocks.size(); ++b) {
-        jacobians[b].resize(rows * sizes[b]);
-        jacobian_pointers[b] = jacobians[b].data();
-      }
-      cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data());
-      Eigen::VectorXd row(n);
-      for (int r = 0; r < rows; ++r) {
-        for (size_t b = 0; b < blocks.size(); ++b) {
-          for (int k = 0; k < sizes[b]; ++k) row[offsets[b] + k] = jacobians[b][r * sizes[b] + k];
-        }
-        meat.noalias() += (residuals[r] * residuals[r]) * row * row.transpose();
-      }
-    }
-    *covariance = a_inverse * meat * a_inverse;
-    for (int k = 0; k < n; ++k) {
-      if (held[k]) (*covariance)(k, k) = kNaN;  // marks "at the bound" for ParamStderr
+    const Eigen::MatrixXd a_inverse = eigen.eigenvectors() * values.cwiseInverse().asDiagonal() *
+                                      eigen.eigenvectors().transpose();
+    const Eigen::MatrixXd free_covariance = a_inverse * b * a_inverse;
+    for (int i = 0; i < m; ++i) {
+      for (int j = 0; j < m; ++j) (*covariance)(free[i], free[j]) = free_covariance(i, j);
     }
     return true;
   }
@@ -383,15 +410,18 @@ FitResult RunFit(LobeKind kind, const ModelInfo& info, const PreparedSamples& pr
   const std::vector<FitSample> subset = Subsample(all, options.max_samples, options.seed);
   const bool subsampled = subset.size() < all.size();
 
-  // 1. Multi-start over the exponent on the subsample, without a robust loss.
+  // 1. Multi-start over the exponent on a smaller subsample (each start only has to find its
+  // basin), without a robust loss.
+  const std::vector<FitSample> start_subset =
+      Subsample(subset, std::min<size_t>(subset.size(), kStartSamples), options.seed + 1);
   Variables best;
   double best_cost = std::numeric_limits<double>::infinity();
   const std::vector<double> starts =
       kind == LobeKind::kNone ? std::vector<double>{1.0} : options.start_exponents;
   int iterations = 0;
   for (double exponent : starts) {
-    Variables trial = fitter.InitialGuess(subset, exponent);
-    auto problem = fitter.BuildProblem(subset, &trial);
+    Variables trial = fitter.InitialGuess(start_subset, exponent);
+    auto problem = fitter.BuildProblem(start_subset, &trial);
     const ceres::Solver::Summary summary =
         fitter.Solve(problem.get(), std::min(options.start_iterations, options.max_iterations));
     iterations += static_cast<int>(summary.iterations.size());
@@ -459,7 +489,7 @@ FitResult RunFit(LobeKind kind, const ModelInfo& info, const PreparedSamples& pr
   // Standard errors.
   Eigen::MatrixXd covariance;
   result.stderr_values.assign(params.size(), kNaN);
-  if (fitter.Covariance(problem.get(), &final_variables, &covariance, &result.stderr_note)) {
+  if (fitter.Covariance(problem.get(), final_variables, &covariance, &result.stderr_note)) {
     result.stderr_values = fitter.ParamStderr(final_variables, covariance);
     result.stderr_available = true;
   }

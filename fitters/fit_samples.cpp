@@ -1,5 +1,7 @@
 #include "fitters/fit_samples.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -29,9 +31,10 @@ bool IsMerlGrid(const Measurement& measurement) {
 // dwi dwo of the MERL cell holding (wi, wo): 4 cos(theta_d) dw_h dw_d with phi_h integrated
 // out (isotropy), theta_h bins of width ((i+1)^2 - i^2) / 90^2 * pi/2.
 double MerlCellMeasure(const Vec3& wi, const Vec3& wo) {
-  const HalfDiff hd = ToHalfDiff(wi, wo);
-  const int i = MerlTable::ThetaHalfIndex(hd.theta_h);
-  const int j = MerlTable::ThetaDiffIndex(hd.theta_d);
+  // Only theta_h and theta_d are needed: cos theta_h = h.z and cos theta_d = wi.h.
+  const Vec3 half_vector = (wi + wo).normalized();
+  const int i = MerlTable::ThetaHalfIndex(std::acos(std::clamp(half_vector.z(), -1.0, 1.0)));
+  const int j = MerlTable::ThetaDiffIndex(std::acos(std::clamp(wi.dot(half_vector), -1.0, 1.0)));
   const HalfDiff centre = MerlTable::CellCentre(i, j, 0);
   const double n = MerlTable::kThetaHalfBins;
   const double d_theta_h = ((i + 1) * (i + 1) - i * i) / (n * n) * (0.5 * kPi);
@@ -114,7 +117,9 @@ PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
 
   // Solid-angle weights.
   if (IsMerlGrid(measurement)) {
-    for (FitSample& sample : samples) sample.weight = MerlCellMeasure(sample.wi, sample.wo);
+    tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
+      samples[k].weight = MerlCellMeasure(samples[k].wi, samples[k].wo);
+    });
     prepared.weighting = "MERL cell measure 4 cos(theta_d) dw_h dw_d";
   } else {
     std::map<std::tuple<long long, long long, long long>, std::vector<size_t>> groups;

@@ -42,8 +42,8 @@ class BatchResidual {
     using std::log;
     for (int k = 0; k < count_; ++k) {
       const FitSample& sample = samples_[k];
-      const Vec3T<T> wi = sample.wi.cast<T>(), wo = sample.wo.cast<T>();
-      const RgbT<T> f = ModelType::template Eval<T>(params, wi, wo);
+      // Directions stay plain doubles: only the parameters carry derivatives.
+      const RgbT<T> f = ModelType::template Eval<T>(params, sample.wi, sample.wo);
       for (int c = 0; c < 3; ++c) {
         T predicted = f[c];
         if (loss_ == Loss::kLog) {

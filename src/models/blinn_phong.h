@@ -20,8 +20,8 @@ namespace brdf::models {
 struct BlinnPhong : LobedSlots {
   static constexpr const char* kName = "blinn-phong";
 
-  template <typename T>
-  static RgbT<T> Eval(const T* params, const Vec3T<T>& wi, const Vec3T<T>& wo) {
+  template <typename T, typename D>
+  static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
     if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
     const T& m = params[kExponent];
     const T lobe = (m + T(8)) * T(0.125 * kInvPi) * ClampedPow(CosThetaHalf(wi, wo), m);
@@ -29,12 +29,12 @@ struct BlinnPhong : LobedSlots {
   }
 
   // cos(theta_h) = z-component of normalize(wi + wo).
-  template <typename T>
-  static T CosThetaHalf(const Vec3T<T>& wi, const Vec3T<T>& wo) {
+  template <typename D>
+  static D CosThetaHalf(const Vec3T<D>& wi, const Vec3T<D>& wo) {
     using std::sqrt;
-    const Vec3T<T> sum = wi + wo;
-    const T norm_squared = sum.squaredNorm();
-    if (norm_squared <= T(0)) return T(0);
+    const Vec3T<D> sum = wi + wo;
+    const D norm_squared = sum.squaredNorm();
+    if (norm_squared <= D(0)) return D(0);
     return sum.z() / sqrt(norm_squared);
   }
 };

@@ -19,8 +19,8 @@ namespace brdf::models {
 struct BlinnPhongExact : LobedSlots {
   static constexpr const char* kName = "blinn-phong-exact";
 
-  template <typename T>
-  static RgbT<T> Eval(const T* params, const Vec3T<T>& wi, const Vec3T<T>& wo) {
+  template <typename T, typename D>
+  static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
     using std::pow;
     if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
     const T& m = params[kExponent];

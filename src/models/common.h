@@ -24,6 +24,11 @@ inline RgbT<T> LoadRgb(const T* params, int slot) {
   return RgbT<T>(params[slot], params[slot + 1], params[slot + 2]);
 }
 
+// Every model is templated on T, the scalar of its parameters, and D, the scalar of the
+// directions (deduced). D = T serves plain evaluation and derivatives with respect to
+// directions; D = double with T = ceres::Jet lets a fit differentiate only with respect to the
+// parameters, computing the geometry once in plain doubles.
+
 // Both directions strictly above the surface; grazing (z = 0) counts as below.
 template <typename T>
 inline bool AboveHorizon(const Vec3T<T>& wi, const Vec3T<T>& wo) {
@@ -31,11 +36,12 @@ inline bool AboveHorizon(const Vec3T<T>& wi, const Vec3T<T>& wo) {
 }
 
 // x^e for x in (0, 1]; 0 for x <= 0. Keeps pow away from 0 so that automatic differentiation
-// never evaluates log(0) in the exponent's derivative.
-template <typename T>
-inline T ClampedPow(const T& x, const T& e) {
+// never evaluates log(0) in the exponent's derivative. The base may be a plain double (the
+// geometry) while the exponent is a Jet (a fitted parameter).
+template <typename D, typename T>
+inline T ClampedPow(const D& x, const T& e) {
   using std::pow;
-  if (x <= T(0)) return T(0);
+  if (x <= D(0)) return T(0);
   return pow(x, e);
 }
 

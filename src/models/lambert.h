@@ -15,8 +15,8 @@ struct Lambert {
   static constexpr int kRhoD = 0;
   static constexpr int kNumParams = 3;
 
-  template <typename T>
-  static RgbT<T> Eval(const T* params, const Vec3T<T>& wi, const Vec3T<T>& wo) {
+  template <typename T, typename D>
+  static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
     if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
     return LoadRgb(params, kRhoD) * T(kInvPi);
   }

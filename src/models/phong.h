@@ -17,11 +17,11 @@ namespace brdf::models {
 struct Phong : LobedSlots {
   static constexpr const char* kName = "phong";
 
-  template <typename T>
-  static RgbT<T> Eval(const T* params, const Vec3T<T>& wi, const Vec3T<T>& wo) {
+  template <typename T, typename D>
+  static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
     if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
     const T& n = params[kExponent];
-    const T cos_alpha = MirrorDirection(wi).dot(wo);
+    const D cos_alpha = MirrorDirection(wi).dot(wo);
     const T lobe = (n + T(2)) * T(0.5 * kInvPi) * ClampedPow(cos_alpha, n);
     return LoadRgb(params, kRhoD) * T(kInvPi) + LoadRgb(params, kRhoS) * lobe;
   }

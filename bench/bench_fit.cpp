@@ -1,0 +1,126 @@
+// Fitting speed and accuracy (docs/fitting.md). Prints CSV on stdout, one row per
+// configuration, the median wall time of `--repetitions` runs:
+//   case,samples,loss,max_samples,median_s,max_relative_error,converged
+// Cases: "merl" fits a full 90x90x180 MERL table tabulated from an analytic blinn-phong (the
+// cells above the horizon); "random" fits N uniformly random (wi, wo) pairs, as libbsdf's
+// lbfit draws 100,000 random samples.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/angles.h"
+#include "fitters/fit.h"
+#include "io/merl.h"
+#include "models/model_string.h"
+
+namespace brdf {
+namespace {
+
+const char* kTruth = "blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:m=300";
+
+Measurement MerlMeasurement(const Model& truth) {
+  MerlTable table;
+  for (int h = 0; h < MerlTable::kThetaHalfBins; ++h) {
+    for (int d = 0; d < MerlTable::kThetaDiffBins; ++d) {
+      for (int p = 0; p < MerlTable::kPhiDiffBins; ++p) {
+        Vec3 wi, wo;
+        FromHalfDiff(MerlTable::CellCentre(h, d, p), &wi, &wo);
+        const Rgb value = truth.Eval(wi, wo);
+        for (int c = 0; c < 3; ++c) {
+          table.raw(c, MerlTable::CellIndex(h, d, p)) = value[c] / MerlTable::kScale[c];
+        }
+      }
+    }
+  }
+  Measurement measurement = table.ToMeasurement();
+  measurement.format = "merl";
+  return measurement;
+}
+
+Vec3 UniformHemisphere(std::mt19937_64& random) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const double z = uniform(random), phi = 2 * kPi * uniform(random);
+  const double r = std::sqrt(std::max(0.0, 1 - z * z));
+  return Vec3(r * std::cos(phi), r * std::sin(phi), z);
+}
+
+Measurement RandomMeasurement(const Model& truth, size_t count, uint64_t seed) {
+  Measurement measurement;
+  measurement.format = "random";
+  std::mt19937_64 random(seed);
+  for (size_t k = 0; k < count; ++k) {
+    Sample sample;
+    sample.wi = UniformHemisphere(random);
+    sample.wo = UniformHemisphere(random);
+    sample.value = truth.Eval(sample.wi, sample.wo);
+    measurement.samples.push_back(sample);
+  }
+  return measurement;
+}
+
+double MaxRelativeError(const Model& fitted, const Model& truth) {
+  double worst = 0;
+  for (size_t p = 0; p < truth.params().size(); ++p) {
+    worst = std::max(worst, std::abs(fitted.params()[p] / truth.params()[p] - 1));
+  }
+  return worst;
+}
+
+void Run(const char* name, const Measurement& measurement, const Model& truth, fitters::Loss loss,
+         size_t max_samples, int repetitions) {
+  fitters::FitOptions options;
+  options.loss = loss;
+  options.max_samples = max_samples;
+  std::vector<double> times;
+  double error = 0;
+  bool converged = true;
+  size_t samples = 0;
+  for (int r = 0; r < repetitions; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    const fitters::FitResult fit = fitters::FitModel(measurement, truth.name(), options);
+    times.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    error = MaxRelativeError(fit.model, truth);
+    converged = converged && fit.converged;
+    samples = fit.samples;
+  }
+  std::sort(times.begin(), times.end());
+  std::printf("%s,%zu,%s,%zu,%.4f,%.3g,%d\n", name, samples, fitters::LossName(loss), max_samples,
+              times[times.size() / 2], error, converged ? 1 : 0);
+  std::fflush(stdout);
+}
+
+}  // namespace
+}  // namespace brdf
+
+int main(int argc, char** argv) {
+  using namespace brdf;
+  int repetitions = 5;
+  bool quick = false;
+  for (int k = 1; k < argc; ++k) {
+    if (std::strcmp(argv[k], "--quick") == 0) quick = true;
+    if (std::strncmp(argv[k], "--repetitions=", 14) == 0) repetitions = std::atoi(argv[k] + 14);
+  }
+  const Model truth = ParseModel(kTruth);
+  std::printf("case,samples,loss,max_samples,median_s,max_relative_error,converged\n");
+  const Measurement merl = MerlMeasurement(truth);
+  Run("merl", merl, truth, fitters::Loss::kL2, 20000, repetitions);
+  Run("random", RandomMeasurement(truth, 100000, 11), truth, fitters::Loss::kL2, 20000,
+      repetitions);
+  if (quick) return 0;
+  // Time and error against sample count, per loss, without subsampling (every solve on all
+  // samples) and with the default subsample + polish.
+  for (size_t count : {1000, 3000, 10000, 30000, 100000, 300000, 1000000}) {
+    const Measurement random = RandomMeasurement(truth, count, 13);
+    for (fitters::Loss loss : {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+      Run("random", random, truth, loss, 0, std::max(1, repetitions / 2));
+    }
+    Run("random", random, truth, fitters::Loss::kL2, 20000, std::max(1, repetitions / 2));
+  }
+  return 0;
+}
