@@ -1,0 +1,52 @@
+// libFuzzer target for one measurement reader, chosen at compile time by FUZZ_FORMAT (a
+// FileFormat name). The input becomes a file, as users give it; every outcome but a clean read
+// or a brdf::Error (a one-line diagnosis) is a finding: a crash, a sanitizer report, another
+// exception type, a hang or a leak.
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "core/errors.h"
+#include "io/formats.h"
+
+namespace {
+
+const brdf::FileFormat& Format() {
+  static const brdf::FileFormat* format = [] {
+    for (const brdf::FileFormat& candidate : brdf::FileFormats()) {
+      if (candidate.name == FUZZ_FORMAT) return &candidate;
+    }
+    std::abort();
+  }();
+  return *format;
+}
+
+// One scratch file per process, in memory where the system offers it.
+const std::string& ScratchPath() {
+  static const std::string path = [] {
+    const char* directory = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
+    return std::string(directory) + "/brdfkit-fuzz-" + std::to_string(getpid()) +
+           Format().extensions.front();
+  }();
+  return path;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  const std::string& path = ScratchPath();
+  FILE* file = std::fopen(path.c_str(), "wb");
+  if (file == nullptr) std::abort();
+  if (size > 0 && std::fwrite(data, 1, size, file) != size) std::abort();
+  std::fclose(file);
+  try {
+    const brdf::Measurement measurement = Format().read(path, brdf::ReadOptions{});
+    (void)brdf::Summarize(measurement);  // what `brdf info` does next
+  } catch (const brdf::Error&) {
+    // A diagnosed bad input: the expected outcome for most mutations.
+  }
+  return 0;
+}
