@@ -36,7 +36,8 @@ int AperturePoints(double aperture_radius, double lobe_width) {
   if (!std::isfinite(lobe_width)) return kMinAperturePoints;
   const double ratio = aperture_radius / lobe_width;
   const double points = std::ceil(4 * kPi * ratio * ratio);
-  return static_cast<int>(std::clamp(points, double{kMinAperturePoints}, double{kMaxAperturePoints}));
+  return static_cast<int>(
+      std::clamp(points, double{kMinAperturePoints}, double{kMaxAperturePoints}));
 }
 
 }  // namespace brdf::gonio

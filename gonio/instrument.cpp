@@ -93,10 +93,8 @@ void Instrument::Validate() const {
   Require(lamp_power > 0 && std::isfinite(lamp_power), "source.lamp_power", "> 0", lamp_power);
   Require(detector_solid_angle_sr > 0 && detector_solid_angle_sr <= 0.5, "detector.solid_angle_sr",
           "in (0, 0.5]", detector_solid_angle_sr);
-  Require(photons >= 0 && photons <= 1e15, "detector.photons", "in [0, 1e15] (0 = ideal)",
-          photons);
-  Require(read_noise >= 0 && std::isfinite(read_noise), "detector.read_noise", ">= 0",
-          read_noise);
+  Require(photons >= 0 && photons <= 1e15, "detector.photons", "in [0, 1e15] (0 = ideal)", photons);
+  Require(read_noise >= 0 && std::isfinite(read_noise), "detector.read_noise", ">= 0", read_noise);
   Require(blocked_within_deg >= 0 && blocked_within_deg < 45, "detector.blocked_within_deg",
           "in [0, 45)", blocked_within_deg);
   Require(stray_light >= 0 && stray_light < 1, "stray_light", "in [0, 1)", stray_light);
@@ -108,12 +106,12 @@ void Instrument::Validate() const {
           "in [0, 80)", reference_theta_o_deg);
   Require(reference_readings >= 1 && reference_readings <= 100000, "reference.readings",
           "in [1, 100000]", reference_readings);
-  Require(camera_resolution >= 8 && camera_resolution <= 8192, "camera.resolution",
-          "in [8, 8192]", camera_resolution);
+  Require(camera_resolution >= 8 && camera_resolution <= 8192, "camera.resolution", "in [8, 8192]",
+          camera_resolution);
   Require(camera_distance >= 1.5 && camera_distance <= 1000, "camera.distance",
           "in [1.5, 1000] sphere radii", camera_distance);
-  Require(sphere_segments >= 8 && sphere_segments <= 4096, "camera.sphere_segments",
-          "in [8, 4096]", sphere_segments);
+  Require(sphere_segments >= 8 && sphere_segments <= 4096, "camera.sphere_segments", "in [8, 4096]",
+          sphere_segments);
 }
 
 std::string Instrument::ToJson() const {
@@ -192,8 +190,8 @@ Instrument ParseInstrument(const std::string& json_text, const std::string& orig
     } else if (kind == "point") {
       instrument.source_kind = Instrument::SourceKind::kPoint;
     } else {
-      throw InputError(origin, "source.kind: expected \"collimated\" or \"point\", got \"" +
-                                   kind + "\"");
+      throw InputError(origin,
+                       "source.kind: expected \"collimated\" or \"point\", got \"" + kind + "\"");
     }
     source.Number("angular_radius_deg", &instrument.source_angular_radius_deg);
     source.Number("distance_m", &instrument.source_distance_m);

@@ -6,7 +6,8 @@
 // Signal chain of one reading (docs/gonio.md has the figure):
 //   R      = (1/Ω) ∫_detector f(wi', wo) cos(theta_o) dwo, averaged over the source's directions
 //            wi' — the power reaching the detector per unit incident power and steradian;
-//   counts = Poisson(photons · lamp_power · (R + stray_light · R_norm) / R_norm) + N(0, read_noise²)
+//   counts = Poisson(photons · lamp_power · (R + stray_light · R_norm) / R_norm) + N(0,
+//   read_noise²)
 //            with R_norm = (rho_ref/π) cos(theta_o,ref) the ideal reference reading;
 //   f      = counts / counts_ref · R_norm / cos(theta_o),
 // where counts_ref is the mean of `reference.readings` readings of the Lambertian reference at

@@ -23,26 +23,25 @@ Model LoadSampleModel(const std::string& spec, const std::string& model_spec) {
 }
 
 std::string InstrumentSummary(const Instrument& instrument) {
-  std::string text =
-      instrument.source_kind == Instrument::SourceKind::kCollimated
-          ? "collimated source, angular radius " +
-                FormatNumber(instrument.source_angular_radius_deg) + " deg"
-          : "point source at " + FormatNumber(instrument.source_distance_m) + " m, spot radius " +
-                FormatNumber(instrument.spot_radius_mm) + " mm";
+  std::string text = instrument.source_kind == Instrument::SourceKind::kCollimated
+                         ? "collimated source, angular radius " +
+                               FormatNumber(instrument.source_angular_radius_deg) + " deg"
+                         : "point source at " + FormatNumber(instrument.source_distance_m) +
+                               " m, spot radius " + FormatNumber(instrument.spot_radius_mm) + " mm";
   text += "; detector " + FormatNumber(instrument.detector_solid_angle_sr) + " sr";
   text += "; jitter " + FormatNumber(instrument.jitter_deg) + " deg";
   if (instrument.photons > 0) {
-    text += "; shot noise (" + FormatNumber(instrument.photons) + " reference counts), read noise " +
-            FormatNumber(instrument.read_noise) + " counts";
+    text += "; shot noise (" + FormatNumber(instrument.photons) +
+            " reference counts), read noise " + FormatNumber(instrument.read_noise) + " counts";
   } else {
     text += "; ideal detector (no shot or read noise)";
   }
   text += "; stray light " + FormatNumber(instrument.stray_light);
-  text += "; calibrated against a Lambertian reference rho=" +
-          FormatNumber(instrument.reference_rho) + " at " +
-          FormatNumber(instrument.reference_theta_i_deg) + "/" +
-          FormatNumber(instrument.reference_theta_o_deg) + " deg (" +
-          std::to_string(instrument.reference_readings) + " readings)";
+  text +=
+      "; calibrated against a Lambertian reference rho=" + FormatNumber(instrument.reference_rho) +
+      " at " + FormatNumber(instrument.reference_theta_i_deg) + "/" +
+      FormatNumber(instrument.reference_theta_o_deg) + " deg (" +
+      std::to_string(instrument.reference_readings) + " readings)";
   return text;
 }
 
@@ -120,11 +119,13 @@ void Calibration::CalibrateRatio(const Rgb& reading, const Rgb& reference_readin
       }
       scale = instrument_.reference_rho * kInvPi;
     }
-    if (reference_counts <= 0) throw ComputeError("reference reading is zero: no signal to calibrate");
+    if (reference_counts <= 0)
+      throw ComputeError("reference reading is zero: no signal to calibrate");
     const double ratio = counts / reference_counts;
     (*value)[c] = ratio * scale;
     // First-order propagation of the two independent count errors through the ratio.
-    (*sigma)[c] = scale * std::sqrt(variance + ratio * ratio * reference_variance) / reference_counts;
+    (*sigma)[c] =
+        scale * std::sqrt(variance + ratio * ratio * reference_variance) / reference_counts;
   }
 }
 
@@ -210,15 +211,16 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
         ++skipped;
         continue;
       }
-      measurement.samples.push_back({incidence.wi, incidence.detectors[k].wo, values[index], false});
+      measurement.samples.push_back(
+          {incidence.wi, incidence.detectors[k].wo, values[index], false});
       measurement.sigma.push_back(sigmas[index]);
       if (schedule.has_weight) measurement.weight.push_back(incidence.detectors[k].weight);
     }
   }
   measurement.metadata["modelled"] = sample->Modelled() + "; " + InstrumentSummary(instrument);
-  measurement.metadata["skipped"] =
-      std::to_string(skipped) + " geometries where the detector arm shadows the beam (within " +
-      FormatNumber(instrument.blocked_within_deg) + " deg)";
+  measurement.metadata["skipped"] = std::to_string(skipped) +
+                                    " geometries where the detector arm shadows the beam (within " +
+                                    FormatNumber(instrument.blocked_within_deg) + " deg)";
   return measurement;
 }
 

@@ -45,9 +45,9 @@ Rgb ModelSample::Reading(const Instrument& instrument, const Vec3& wi, const Vec
     for (int d = 0; d < detector_points_; ++d) {
       double v1 = 0, v2 = 0;
       VogelPoint(d, detector_points_, &v1, &v2);
-      const Vec3 wo_detector = detector_points_ > 1
-                                   ? detector_frame.FromLocal(SampleUniformCone(v1, v2, cos_detector))
-                                   : wo;
+      const Vec3 wo_detector =
+          detector_points_ > 1 ? detector_frame.FromLocal(SampleUniformCone(v1, v2, cos_detector))
+                               : wo;
       if (wo_detector.z() <= 0) continue;
       detector_sum += model_.Eval(wi_source, wo_detector) * wo_detector.z();
     }
@@ -60,9 +60,8 @@ std::vector<Rgb> ModelSample::Measure(const Instrument& instrument, const Vec3& 
                                       const std::vector<Vec3>& detectors, uint64_t /*seed*/,
                                       uint64_t /*incidence_index*/) const {
   std::vector<Rgb> readings(detectors.size(), Rgb::Zero());
-  tbb::parallel_for(size_t{0}, detectors.size(), [&](size_t k) {
-    readings[k] = Reading(instrument, wi, detectors[k]);
-  });
+  tbb::parallel_for(size_t{0}, detectors.size(),
+                    [&](size_t k) { readings[k] = Reading(instrument, wi, detectors[k]); });
   return readings;
 }
 

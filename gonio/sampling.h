@@ -23,7 +23,9 @@ struct Frame {
     tangent = Vec3(1.0 + sign * n.x() * n.x() * a, sign * b, -sign * n.x());
     bitangent = Vec3(b, sign + n.y() * n.y() * a, -n.y());
   }
-  Vec3 FromLocal(const Vec3& v) const { return v.x() * tangent + v.y() * bitangent + v.z() * normal; }
+  Vec3 FromLocal(const Vec3& v) const {
+    return v.x() * tangent + v.y() * bitangent + v.z() * normal;
+  }
   Vec3 ToLocal(const Vec3& v) const {
     return Vec3(v.dot(tangent), v.dot(bitangent), v.dot(normal));
   }

@@ -7,8 +7,8 @@
 
 #include "core/angles.h"
 #include "core/errors.h"
-#include "io/merl.h"
 #include "gonio/sampling.h"
+#include "io/merl.h"
 
 namespace brdf::gonio {
 namespace {
@@ -24,7 +24,8 @@ std::map<std::string, double> ParseOptions(const std::string& spec,
   size_t start = spec.find(':');
   while (start != std::string::npos) {
     const size_t end = spec.find(':', start + 1);
-    const std::string part = spec.substr(start + 1, end == std::string::npos ? end : end - start - 1);
+    const std::string part =
+        spec.substr(start + 1, end == std::string::npos ? end : end - start - 1);
     const size_t equals = part.find('=');
     if (equals == std::string::npos) Fail(spec, "expected key=value, found '" + part + "'");
     const std::string key = part.substr(0, equals);
@@ -160,8 +161,8 @@ Schedule Adaptive(const std::string& spec) {
       const double ring = DegToRad(ring_deg);
       for (int k = 0; k < kAdaptiveRingPoints; ++k) {
         const double phi = 2 * kPi * k / kAdaptiveRingPoints;
-        const Vec3 wo = frame.FromLocal(Vec3(std::sin(ring) * std::cos(phi),
-                                             std::sin(ring) * std::sin(phi), std::cos(ring)));
+        const Vec3 wo = frame.FromLocal(
+            Vec3(std::sin(ring) * std::cos(phi), std::sin(ring) * std::sin(phi), std::cos(ring)));
         if (wo.z() > std::cos(DegToRad(89.5))) incidence.detectors.push_back({wo, 0});
       }
     }
@@ -204,9 +205,10 @@ std::vector<Vec3> EqualAreaCells(int cells) {
   int previous = 1;
   for (int k = 0; k < rings; ++k) {
     const double upper = cap_theta + (kPi / 2 - cap_theta) * (k + 1) / rings;
-    const int cumulative = k + 1 == rings ? cells
-                                          : std::max(previous, static_cast<int>(std::lround(
-                                                                   (1.0 - std::cos(upper)) * cells)));
+    const int cumulative =
+        k + 1 == rings
+            ? cells
+            : std::max(previous, static_cast<int>(std::lround((1.0 - std::cos(upper)) * cells)));
     ring_cells[k] = cumulative - previous;
     previous = cumulative;
   }
@@ -217,7 +219,7 @@ std::vector<Vec3> EqualAreaCells(int cells) {
     cumulative += ring_cells[k];
     const double cos_upper = std::max(0.0, 1.0 - static_cast<double>(cumulative) / cells);
     const double theta = std::acos(0.5 * (cos_lower + cos_upper));  // mid-area polar angle
-    for (int j = 0; j < ring_cells[k]; ++j) {  // an empty ring adds nothing
+    for (int j = 0; j < ring_cells[k]; ++j) {                       // an empty ring adds nothing
       centres.push_back(SphericalDirection(theta, 2 * kPi * (j + 0.5) / ring_cells[k]));
     }
   }

@@ -75,12 +75,11 @@ Command AddMeasureCommand(CLI::App& parent) {
               throw UsageError(options->out +
                                ": MERL .binary output needs the merl schedule (--schedule merl)");
             }
-            Progress progress("measuring", gonio::CountReadings(measure, schedule),
-                              options->quiet);
+            Progress progress("measuring", gonio::CountReadings(measure, schedule), options->quiet);
             measure.advance = [&progress](int64_t done) { progress.Advance(done); };
             const Measurement measurement = gonio::Measure(measure, schedule);
-            const WriteReport report = WriteMeasurement(measurement, options->out,
-                                                        output_format.name);
+            const WriteReport report =
+                WriteMeasurement(measurement, options->out, output_format.name);
             for (const std::string& warning : report.warnings) {
               std::cerr << "brdf measure: warning: " << warning << "\n";
             }
