@@ -1,13 +1,12 @@
 #include "gonio/instrument.h"
 
 #include <cmath>
-#include <functional>
-#include <map>
 #include <nlohmann/json.hpp>
 
 #include "core/angles.h"
 #include "core/errors.h"
 #include "core/text.h"
+#include "gonio/json_fields.h"
 #include "gonio/sampling.h"
 
 namespace brdf::gonio {
@@ -21,66 +20,6 @@ void Require(bool ok, const std::string& field, const std::string& range, double
     throw UsageError("instrument " + field + " must be " + range + ", got " + FormatNumber(value));
   }
 }
-
-// Reads the members of one JSON object into fields; unknown keys are errors so that a typo
-// ("solid_angle" for "solid_angle_sr") is not silently ignored.
-class ObjectReader {
- public:
-  ObjectReader(const nlohmann::json& object, std::string prefix, const std::string& origin)
-      : object_(object), prefix_(std::move(prefix)), origin_(origin) {
-    if (!object_.is_object()) Fail(prefix_.empty() ? "top level" : prefix_, "expected an object");
-  }
-
-  void Number(const char* key, double* value) {
-    Known(key);
-    if (!object_.contains(key)) return;
-    const nlohmann::json& field = object_[key];
-    if (!field.is_number()) Fail(Name(key), "expected a number");
-    *value = field.get<double>();
-  }
-  void Integer(const char* key, int* value) {
-    Known(key);
-    if (!object_.contains(key)) return;
-    const nlohmann::json& field = object_[key];
-    if (!field.is_number_integer()) Fail(Name(key), "expected an integer");
-    *value = field.get<int>();
-  }
-  void Text(const char* key, std::string* value) {
-    Known(key);
-    if (!object_.contains(key)) return;
-    const nlohmann::json& field = object_[key];
-    if (!field.is_string()) Fail(Name(key), "expected a string");
-    *value = field.get<std::string>();
-  }
-  void Object(const char* key, const std::function<void(ObjectReader&)>& read) {
-    Known(key);
-    if (!object_.contains(key)) return;
-    ObjectReader nested(object_[key], Name(key), origin_);
-    read(nested);
-    nested.RejectUnknown();
-  }
-  void RejectUnknown() const {
-    for (const auto& item : object_.items()) {
-      if (!known_.count(item.key())) {
-        std::string list;
-        for (const auto& [name, unused] : known_) list += (list.empty() ? "" : ", ") + name;
-        Fail(Name(item.key().c_str()), "unknown field (known here: " + list + ")");
-      }
-    }
-  }
-
- private:
-  void Known(const char* key) { known_[key] = true; }
-  std::string Name(const char* key) const { return prefix_.empty() ? key : prefix_ + "." + key; }
-  [[noreturn]] void Fail(const std::string& field, const std::string& what) const {
-    throw InputError(origin_, field + ": " + what);
-  }
-
-  const nlohmann::json& object_;
-  std::string prefix_;
-  const std::string& origin_;
-  std::map<std::string, bool> known_;
-};
 
 }  // namespace
 
@@ -173,16 +112,10 @@ Vec3 Instrument::SourceDirection(const Vec3& wi, double u1, double u2, double* w
 }
 
 Instrument ParseInstrument(const std::string& json_text, const std::string& origin) {
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw ByteError(origin, static_cast<int64_t>(error.byte) - 1,
-                    "not valid JSON, expected an instrument description");
-  }
+  const nlohmann::json json = ParseJsonText(json_text, origin, "an instrument description");
   Instrument instrument;
-  ObjectReader top(json, "", origin);
-  top.Object("source", [&](ObjectReader& source) {
+  JsonFields top(json, "", origin);
+  top.Object("source", [&](JsonFields& source) {
     std::string kind = "collimated";
     source.Text("kind", &kind);
     if (kind == "collimated") {
@@ -198,7 +131,7 @@ Instrument ParseInstrument(const std::string& json_text, const std::string& orig
     source.Number("spot_radius_mm", &instrument.spot_radius_mm);
     source.Number("lamp_power", &instrument.lamp_power);
   });
-  top.Object("detector", [&](ObjectReader& detector) {
+  top.Object("detector", [&](JsonFields& detector) {
     detector.Number("solid_angle_sr", &instrument.detector_solid_angle_sr);
     detector.Number("photons", &instrument.photons);
     detector.Number("read_noise", &instrument.read_noise);
@@ -206,13 +139,13 @@ Instrument ParseInstrument(const std::string& json_text, const std::string& orig
   });
   top.Number("jitter_deg", &instrument.jitter_deg);
   top.Number("stray_light", &instrument.stray_light);
-  top.Object("reference", [&](ObjectReader& reference) {
+  top.Object("reference", [&](JsonFields& reference) {
     reference.Number("rho", &instrument.reference_rho);
     reference.Number("theta_i_deg", &instrument.reference_theta_i_deg);
     reference.Number("theta_o_deg", &instrument.reference_theta_o_deg);
     reference.Integer("readings", &instrument.reference_readings);
   });
-  top.Object("camera", [&](ObjectReader& camera) {
+  top.Object("camera", [&](JsonFields& camera) {
     camera.Integer("resolution", &instrument.camera_resolution);
     camera.Number("distance", &instrument.camera_distance);
     camera.Integer("sphere_segments", &instrument.sphere_segments);

@@ -10,6 +10,7 @@
 #include "gonio/model_sample.h"
 #include "gonio/rng.h"
 #include "gonio/sampling.h"
+#include "gonio/surface_sample.h"
 #include "models/model_source.h"
 
 namespace brdf::gonio {
@@ -138,7 +139,7 @@ std::unique_ptr<GonioSample> MakeSample(const std::string& spec, const Instrumen
   }
   if (kind == "surface") {
     if (rest.empty()) throw UsageError("sample '" + spec + "': expected surface:FILE.json");
-    throw UsageError("surface samples: not built yet");
+    return MakeSurfaceSample(rest, instrument);
   }
   throw UsageError("sample '" + spec + "': unknown kind (known: " + kSampleKinds + ")");
 }
