@@ -49,6 +49,8 @@ void Instrument::Validate() const {
           camera_resolution);
   Require(camera_distance >= 1.5 && camera_distance <= 1000, "camera.distance",
           "in [1.5, 1000] sphere radii", camera_distance);
+  Require(camera_max_theta_deg > 0 && camera_max_theta_deg <= 90, "camera.max_theta_deg",
+          "in (0, 90]", camera_max_theta_deg);
   Require(sphere_segments >= 8 && sphere_segments <= 4096, "camera.sphere_segments", "in [8, 4096]",
           sphere_segments);
 }
@@ -76,7 +78,8 @@ std::string Instrument::ToJson() const {
       {"camera",
        {{"resolution", camera_resolution},
         {"distance", camera_distance},
-        {"sphere_segments", sphere_segments}}}};
+        {"sphere_segments", sphere_segments},
+        {"max_theta_deg", camera_max_theta_deg}}}};
   return json.dump();
 }
 
@@ -149,6 +152,7 @@ Instrument ParseInstrument(const std::string& json_text, const std::string& orig
     camera.Integer("resolution", &instrument.camera_resolution);
     camera.Number("distance", &instrument.camera_distance);
     camera.Integer("sphere_segments", &instrument.sphere_segments);
+    camera.Number("max_theta_deg", &instrument.camera_max_theta_deg);
   });
   top.RejectUnknown();
   try {

@@ -60,6 +60,9 @@ struct Instrument {
   int camera_resolution = 128;
   double camera_distance = 10.0;
   int sphere_segments = 256;
+  // Pixels seeing the sphere at theta_i or theta_o above this are dropped: near the silhouette
+  // and the terminator one pixel spans many degrees, as in MERL's acquisition.
+  double camera_max_theta_deg = 80.0;
 
   // Throws UsageError naming the field when a value is out of range.
   void Validate() const;

@@ -10,6 +10,7 @@
 #include "gonio/model_sample.h"
 #include "gonio/rng.h"
 #include "gonio/sampling.h"
+#include "gonio/sphere_acquisition.h"
 #include "gonio/surface_sample.h"
 #include "models/model_source.h"
 
@@ -144,7 +145,10 @@ std::unique_ptr<GonioSample> MakeSample(const std::string& spec, const Instrumen
   throw UsageError("sample '" + spec + "': unknown kind (known: " + kSampleKinds + ")");
 }
 
-int64_t CountReadings(const MeasureOptions& /*options*/, const Schedule& schedule) {
+int64_t CountReadings(const MeasureOptions& options, const Schedule& schedule) {
+  if (StartsWith(options.sample, "sphere:")) {
+    return static_cast<int64_t>(SphereLightThetas(schedule).size());
+  }
   return static_cast<int64_t>(schedule.CountGeometries());
 }
 
@@ -160,6 +164,14 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
   measurement.metadata["units"] = "BRDF in sr^-1, angles in degrees";
   measurement.metadata["producer"] = "brdf measure (virtual gonioreflectometer)";
 
+  if (StartsWith(options.sample, "sphere:")) {
+    const SphereAcquisition acquisition(LoadSampleModel(options.sample, options.sample.substr(7)),
+                                        instrument);
+    acquisition.Acquire(schedule, options.seed, options.advance, &measurement);
+    measurement.metadata["modelled"] =
+        acquisition.Modelled() + "; " + InstrumentSummary(instrument);
+    return measurement;
+  }
   const std::unique_ptr<GonioSample> sample = MakeSample(options.sample, instrument);
   const Calibration calibration(instrument, ReferenceReading(instrument), options.seed);
 
