@@ -172,6 +172,12 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
         acquisition.Modelled() + "; " + InstrumentSummary(instrument);
     return measurement;
   }
+  if (StartsWith(options.sample, "surface:") && schedule.kind == "merl") {
+    // Every MERL cell has its own incidence; tracing each separately would take days.
+    throw UsageError("schedule 'merl' visits " + std::to_string(schedule.incidences.size()) +
+                     " incidences, each traced separately for a surface sample: use "
+                     "hemisphere, equal-area or adaptive, or the sphere sample");
+  }
   const std::unique_ptr<GonioSample> sample = MakeSample(options.sample, instrument);
   const Calibration calibration(instrument, ReferenceReading(instrument), options.seed);
 

@@ -24,6 +24,11 @@ class ModelSample : public GonioSample {
   // The reading of one detector (exposed for the reference and for tests).
   Rgb Reading(const Instrument& instrument, const Vec3& wi, const Vec3& wo) const;
 
+  // Overrides the lobe-width rule (for the speed/accuracy study in bench/).
+  void SetAperturePoints(int source_points, int detector_points) {
+    source_points_ = source_points;
+    detector_points_ = detector_points;
+  }
   int source_points() const { return source_points_; }
   int detector_points() const { return detector_points_; }
   const Model& model() const { return model_; }

@@ -177,6 +177,23 @@ TEST(GonioModelTest, NoiseVarianceMatchesShotAndReadNoise) {
   EXPECT_NEAR(sigma_ratio_sum / n, 1, 0.01);  // the sigma column promises the same
 }
 
+// A point lamp lights the spot from slightly different directions with cos/r² irradiance;
+// a Lambertian sample reads rho/π whatever the source, since calibration uses the same source.
+TEST(GonioModelTest, PointSourceReadsLambertianAlbedo) {
+  Instrument instrument;
+  instrument.photons = 0;
+  instrument.jitter_deg = 0;
+  instrument.source_kind = Instrument::SourceKind::kPoint;
+  instrument.source_distance_m = 0.3;
+  instrument.spot_radius_mm = 20;
+  EXPECT_NEAR(RadToDeg(instrument.SourceAngularRadius()), RadToDeg(std::atan(0.02 / 0.3)), 1e-12);
+  MeasureOptions options;
+  options.sample = "model:lambert:rho_d=0.6";
+  options.instrument = instrument;
+  const Measurement m = Measure(options, MakeSchedule("inplane:step=15"));
+  for (const Sample& s : m.samples) EXPECT_NEAR(s.value[0], 0.6 / kPi, 2e-3 * 0.6 / kPi);
+}
+
 TEST(GonioScheduleTest, EqualAreaCellsPartitionTheHemisphere) {
   for (int cells : {1, 7, 100, 1000}) {
     const std::vector<Vec3> centres = EqualAreaCells(cells);
