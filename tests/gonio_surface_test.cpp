@@ -9,6 +9,7 @@
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "gonio/fresnel.h"
 #include "gonio/measure.h"
 #include "gonio/model_sample.h"
 #include "gonio/surface_sample.h"
@@ -42,6 +43,25 @@ double DielectricFresnel(double cos_i, double n) {
   const double r_s = (cos_i - n * cos_t) / (cos_i + n * cos_t);
   const double r_p = (cos_t - n * cos_i) / (cos_t + n * cos_i);
   return 0.5 * (r_s * r_s + r_p * r_p);
+}
+
+// The tracer's real-arithmetic Fresnel equals the complex amplitudes |r_s|², |r_p|², and at
+// normal incidence ((n−1)² + k²)/((n+1)² + k²).
+TEST(GonioSurfaceTest, FresnelMatchesTheComplexAmplitudes) {
+  for (const auto& [n, k] : std::vector<std::pair<double, double>>{
+           {1.5, 0.0}, {1.33, 0.0}, {0.18, 3.42}, {1.35, 7.47}, {2.9, 3.0}}) {
+    const double normal = ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k);
+    EXPECT_NEAR(FresnelReflectance(1.0, n, k), normal, 1e-12);
+    for (double theta_deg = 0; theta_deg < 90; theta_deg += 7.5) {
+      const double cos_i = std::cos(DegToRad(theta_deg));
+      const std::complex<double> eta(n, k);
+      const std::complex<double> cos_t = std::sqrt(1.0 - (1 - cos_i * cos_i) / (eta * eta));
+      const double r_s = std::norm((cos_i - eta * cos_t) / (cos_i + eta * cos_t));
+      const double r_p = std::norm((eta * cos_i - cos_t) / (eta * cos_i + cos_t));
+      EXPECT_NEAR(FresnelReflectance(cos_i, n, k), 0.5 * (r_s + r_p), 1e-12) << n << " " << k;
+    }
+    EXPECT_NEAR(FresnelReflectance(0.0, n, k), 1.0, 1e-12);  // grazing: total reflection
+  }
 }
 
 TEST(GonioSurfaceTest, FlatLambertianReadsRhoOverPiWithoutABvh) {
