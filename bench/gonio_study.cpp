@@ -79,10 +79,10 @@ void ApertureStudy() {
     reference.push_back(integral / solid_angle);
   }
   ModelSample sample(model, instrument);
-  const int rule_points = sample.detector_points();
-  std::printf("detector_points,by_rule,max_relative_error,seconds_per_reading\n");
-  for (int points : {1, 3, 7, 16, 32, 64, 128, 256, rule_points, 1024, 4096}) {
-    sample.SetAperturePoints(1, points);
+  std::printf("density,detector_points,by_rule,max_relative_error,seconds_per_reading\n");
+  for (double density : {0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0}) {
+    sample.SetApertureDensity(instrument, density);
+    const int points = sample.detector_points();
     double worst = 0;
     for (size_t k = 0; k < detectors.size(); ++k) {
       const double reading = sample.Reading(instrument, wi, detectors[k])[0];
@@ -93,7 +93,7 @@ void ApertureStudy() {
                                sample.Reading(instrument, wi, detectors[r % 5]);
                            }) /
                            200;
-    std::printf("%d,%d,%.6g,%.6g\n", points, points == rule_points ? 1 : 0, worst, seconds);
+    std::printf("%g,%d,%d,%.6g,%.6g\n", density, points, density == 1.0 ? 1 : 0, worst, seconds);
   }
 }
 

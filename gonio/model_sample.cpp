@@ -14,17 +14,22 @@ Model LambertReference(double rho) {
   return Model(FindModel(models::Lambert::kName), std::vector<double>(3, rho));
 }
 
-ModelSample::ModelSample(Model model, const Instrument& instrument) : model_(std::move(model)) {
-  const double lobe_width = LobeWidth(model_);
+ModelSample::ModelSample(Model model, const Instrument& instrument)
+    : model_(std::move(model)), lobe_width_(LobeWidth(model_)) {
+  SetApertureDensity(instrument, 1.0);
+}
+
+void ModelSample::SetApertureDensity(const Instrument& instrument, double density) {
   // A shift of the incidence moves the mirror lobe by the same angle, so the source cone needs
   // the same density of points as the detector cone, relative to its own radius.
-  source_points_ = AperturePoints(instrument.SourceAngularRadius(), lobe_width);
-  detector_points_ = AperturePoints(std::acos(instrument.DetectorCosHalfAngle()), lobe_width);
+  source_quadrature_ = ApertureQuadrature(instrument.SourceAngularRadius(), lobe_width_, density);
+  detector_quadrature_ =
+      ApertureQuadrature(std::acos(instrument.DetectorCosHalfAngle()), lobe_width_, density);
 }
 
 std::string ModelSample::Modelled() const {
   return "flat sample with analytic BRDF " + model_.ToString() + "; aperture quadrature " +
-         std::to_string(source_points_) + " source x " + std::to_string(detector_points_) +
+         std::to_string(source_points()) + " source x " + std::to_string(detector_points()) +
          " detector points (lobe width rule); no ray tracing";
 }
 
@@ -33,25 +38,20 @@ Rgb ModelSample::Reading(const Instrument& instrument, const Vec3& wi, const Vec
   const Frame detector_frame(wo);
   Rgb sum = Rgb::Zero();
   double weight_sum = 0;
-  for (int s = 0; s < source_points_; ++s) {
-    double u1 = 0.5, u2 = 0;
-    if (source_points_ > 1) VogelPoint(s, source_points_, &u1, &u2);
-    double weight = 1;
-    const Vec3 wi_source =
-        source_points_ > 1 ? instrument.SourceDirection(wi, u1, u2, &weight) : wi;
+  for (const AperturePoint& source : source_quadrature_) {
+    double irradiance = 1;
+    const Vec3 wi_source = instrument.SourceDirection(wi, source.u1, source.u2, &irradiance);
+    const double weight = source.weight * irradiance;
     weight_sum += weight;
     if (weight <= 0) continue;
     Rgb detector_sum = Rgb::Zero();
-    for (int d = 0; d < detector_points_; ++d) {
-      double v1 = 0, v2 = 0;
-      VogelPoint(d, detector_points_, &v1, &v2);
+    for (const AperturePoint& detector : detector_quadrature_) {
       const Vec3 wo_detector =
-          detector_points_ > 1 ? detector_frame.FromLocal(SampleUniformCone(v1, v2, cos_detector))
-                               : wo;
+          detector_frame.FromLocal(SampleUniformCone(detector.u1, detector.u2, cos_detector));
       if (wo_detector.z() <= 0) continue;
-      detector_sum += model_.Eval(wi_source, wo_detector) * wo_detector.z();
+      detector_sum += detector.weight * model_.Eval(wi_source, wo_detector) * wo_detector.z();
     }
-    sum += weight * detector_sum / detector_points_;
+    sum += weight * detector_sum;
   }
   return weight_sum > 0 ? Rgb(sum / weight_sum) : Rgb(Rgb::Zero());
 }

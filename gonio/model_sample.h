@@ -4,6 +4,7 @@
 // (aperture.h).
 #pragma once
 
+#include "gonio/aperture.h"
 #include "gonio/sample.h"
 #include "models/registry.h"
 
@@ -24,19 +25,16 @@ class ModelSample : public GonioSample {
   // The reading of one detector (exposed for the reference and for tests).
   Rgb Reading(const Instrument& instrument, const Vec3& wi, const Vec3& wo) const;
 
-  // Overrides the lobe-width rule (for the speed/accuracy study in bench/).
-  void SetAperturePoints(int source_points, int detector_points) {
-    source_points_ = source_points;
-    detector_points_ = detector_points;
-  }
-  int source_points() const { return source_points_; }
-  int detector_points() const { return detector_points_; }
+  // Scales the lobe-width rule's density (for the speed/accuracy study in bench/).
+  void SetApertureDensity(const Instrument& instrument, double density);
+  int source_points() const { return static_cast<int>(source_quadrature_.size()); }
+  int detector_points() const { return static_cast<int>(detector_quadrature_.size()); }
   const Model& model() const { return model_; }
 
  private:
   Model model_;
-  int source_points_ = 1;
-  int detector_points_ = 1;
+  double lobe_width_ = 0;
+  std::vector<AperturePoint> source_quadrature_, detector_quadrature_;
 };
 
 }  // namespace brdf::gonio

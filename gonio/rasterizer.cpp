@@ -56,14 +56,20 @@ glm::dmat4 PinholeCamera::ViewProjection() const {
          glm::lookAt(eye, target, up);
 }
 
-glm::dvec3 PinholeCamera::PixelRay(int x, int y) const {
-  const double tangent = std::tan(0.5 * vertical_fov);
+PinholeCamera::Basis PinholeCamera::MakeBasis() const {
+  Basis basis;
+  basis.forward = glm::normalize(target - eye);
+  basis.right = glm::normalize(glm::cross(basis.forward, up));
+  basis.up = glm::cross(basis.right, basis.forward);
+  basis.tangent = std::tan(0.5 * vertical_fov);
+  return basis;
+}
+
+glm::dvec3 PinholeCamera::PixelRay(const Basis& basis, int x, int y) const {
   const double ndc_x = 2.0 * (x + 0.5) / resolution - 1.0;
   const double ndc_y = 1.0 - 2.0 * (y + 0.5) / resolution;
-  const glm::dvec3 forward = glm::normalize(target - eye);
-  const glm::dvec3 right = glm::normalize(glm::cross(forward, up));
-  const glm::dvec3 camera_up = glm::cross(right, forward);
-  return glm::normalize(forward + ndc_x * tangent * right + ndc_y * tangent * camera_up);
+  return glm::normalize(basis.forward + ndc_x * basis.tangent * basis.right +
+                        ndc_y * basis.tangent * basis.up);
 }
 
 GBuffer Rasterize(const TriangleMesh& mesh, const PinholeCamera& camera) {

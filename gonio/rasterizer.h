@@ -26,8 +26,16 @@ struct PinholeCamera {
   int resolution = 128;       // square image
 
   glm::dmat4 ViewProjection() const;
+
+  // The camera's orthonormal axes, with the half-height of the image plane at distance 1.
+  struct Basis {
+    glm::dvec3 forward, right, up;
+    double tangent = 0;
+  };
+  Basis MakeBasis() const;
   // Unit world-space direction of the ray through the centre of pixel (x, y) (row 0 on top).
-  glm::dvec3 PixelRay(int x, int y) const;
+  glm::dvec3 PixelRay(const Basis& basis, int x, int y) const;
+  glm::dvec3 PixelRay(int x, int y) const { return PixelRay(MakeBasis(), x, y); }
 };
 
 // What each pixel sees: the nearest surface's interpolated normal (unit) and position.

@@ -36,11 +36,19 @@ class Rng {
   }
   // Uniform in [0, 1) with 53 random bits.
   double Uniform() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
-  // Standard normal by the Box-Muller transform (one of the pair; keeps the stream stateless).
+  // Standard normal by the Box-Muller transform; the second of each pair is kept for the next
+  // call (half the logarithms and square roots).
   double Normal() {
+    if (has_spare_) {
+      has_spare_ = false;
+      return spare_;
+    }
     const double u1 = 1.0 - Uniform();  // (0, 1]: log stays finite
     const double u2 = Uniform();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
+    const double radius = std::sqrt(-2.0 * std::log(u1));
+    spare_ = radius * std::sin(2.0 * kPi * u2);
+    has_spare_ = true;
+    return radius * std::cos(2.0 * kPi * u2);
   }
   // Poisson count with the given mean: Knuth's product method for small means, the normal
   // approximation (rounded, clamped at 0) above 30 where its relative error is below 2%.
@@ -64,6 +72,8 @@ class Rng {
     return z ^ (z >> 31);
   }
   uint64_t state_;
+  double spare_ = 0;
+  bool has_spare_ = false;
 };
 
 }  // namespace brdf::gonio

@@ -1,6 +1,5 @@
 // Direction sampling shared by the instrument and the samples: an orthonormal frame around a
-// direction, uniform cones, the cosine-weighted hemisphere, and a deterministic equal-area
-// point set on a disk for aperture quadrature.
+// direction, uniform cones, the cosine-weighted hemisphere and small random rotations.
 #pragma once
 
 #include <algorithm>
@@ -50,17 +49,6 @@ inline Vec3 SampleCosineHemisphere(double u1, double u2) {
   const double phi = 2.0 * kPi * u2;
   const double x = radius * std::cos(phi), y = radius * std::sin(phi);
   return Vec3(x, y, std::sqrt(std::max(0.0, 1.0 - u1)));
-}
-
-// Point k of n on the Vogel (golden-angle) spiral over the unit square's disk equivalent:
-// returns (u1, u2) such that SampleUniformCone(u1, u2, ...) spreads n points evenly, each
-// carrying 1/n of the solid angle (Vogel, "A better way to construct the sunflower head",
-// Math. Biosci. 44, 1979). Deterministic, so an aperture average has no Monte Carlo noise.
-inline void VogelPoint(int k, int n, double* u1, double* u2) {
-  constexpr double kGoldenTurn = 0.38196601125010515;  // (3 − √5)/2 of a turn
-  *u1 = (k + 0.5) / n;
-  const double turns = k * kGoldenTurn;
-  *u2 = turns - std::floor(turns);
 }
 
 // Rotates unit vector `w` by a small random angle: a 2D Gaussian offset of standard deviation

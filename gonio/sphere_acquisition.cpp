@@ -79,6 +79,7 @@ SphereAcquisition::View SphereAcquisition::Shade(const GBuffer& gbuffer, double 
   std::vector<Rgb> sigma(size_t(n) * n);
   std::vector<char> present(size_t(n) * n, 0);
   const glm::dvec3 eye = camera_.eye;
+  const PinholeCamera::Basis basis = camera_.MakeBasis();
   const double cos_max_theta = std::cos(DegToRad(instrument_.camera_max_theta_deg));
   tbb::parallel_for(0, n, [&](int y) {
     for (int x = 0; x < n; ++x) {
@@ -90,7 +91,7 @@ SphereAcquisition::View SphereAcquisition::Shade(const GBuffer& gbuffer, double 
       const double cos_light = mesh_normal.dot(light);
       // Known geometry: the ideal sphere along the pixel's ray.
       glm::dvec3 point;
-      if (!HitSphere(eye, camera_.PixelRay(x, y), &point)) continue;
+      if (!HitSphere(eye, camera_.PixelRay(basis, x, y), &point)) continue;
       const Vec3 normal = ToVec3(point);
       const Vec3 wo = ToVec3(glm::normalize(eye - point));
       if (normal.dot(light_nominal) <= cos_max_theta || normal.dot(wo) <= cos_max_theta ||

@@ -75,12 +75,12 @@ std::unique_ptr<GonioSample> MakeSurfaceSample(const std::string& path,
 FlatSpecularSample::FlatSpecularSample(FacetMaterial material, const Instrument& instrument)
     : material_(std::move(material)) {
   // A mirror's lobe is a delta: the source cone needs the finest quadrature the rule allows.
-  source_points_ = AperturePoints(instrument.SourceAngularRadius(), 0.0);
+  source_quadrature_ = ApertureQuadrature(instrument.SourceAngularRadius(), 0.0);
 }
 
 std::string FlatSpecularSample::Modelled() const {
   return "flat smooth " + material_.ToString() +
-         " (exact Fresnel), measured analytically: " + std::to_string(source_points_) +
+         " (exact Fresnel), measured analytically: " + std::to_string(source_quadrature_.size()) +
          " source points, no ray tracing, no BVH";
 }
 
@@ -93,11 +93,10 @@ std::vector<Rgb> FlatSpecularSample::Measure(const Instrument& instrument, const
   const double solid_angle = instrument.detector_solid_angle_sr;
   std::vector<Rgb> readings(detectors.size(), Rgb::Zero());
   double weight_sum = 0;
-  for (int s = 0; s < source_points_; ++s) {
-    double u1 = 0.5, u2 = 0, weight = 1;
-    if (source_points_ > 1) VogelPoint(s, source_points_, &u1, &u2);
-    const Vec3 wi_source =
-        source_points_ > 1 ? instrument.SourceDirection(wi, u1, u2, &weight) : wi;
+  for (const AperturePoint& source : source_quadrature_) {
+    double irradiance = 1;
+    const Vec3 wi_source = instrument.SourceDirection(wi, source.u1, source.u2, &irradiance);
+    const double weight = source.weight * irradiance;
     weight_sum += weight;
     if (weight <= 0) continue;
     const Vec3 mirror = MirrorDirection(wi_source);

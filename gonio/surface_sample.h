@@ -20,6 +20,7 @@
 #include <memory>
 #include <string>
 
+#include "gonio/aperture.h"
 #include "gonio/facet_material.h"
 #include "gonio/height_field.h"
 #include "gonio/sample.h"
@@ -52,7 +53,7 @@ class FlatSpecularSample : public GonioSample {
 
  private:
   FacetMaterial material_;
-  int source_points_ = 1;
+  std::vector<AperturePoint> source_quadrature_;
 };
 
 }  // namespace brdf::gonio
