@@ -3,7 +3,6 @@
 //   gonio_study acquisition  — raster sphere (vs mesh segments) and ray-traced height field
 //                              (vs rays) cost per sample and error against the analytic model.
 // Times are medians of `kRepeats` runs of wall-clock time. Run through bench/gonio_bench.
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -20,6 +19,7 @@
 #include "gonio/sphere_acquisition.h"
 #include "gonio/surface_sample.h"
 #include "gonio/traced_surface.h"
+#include "gonio_test_util.h"
 #include "models/model_string.h"
 
 namespace brdf::gonio {
@@ -39,18 +39,11 @@ double MedianSeconds(const std::function<void()>& run) {
   return seconds[kRepeats / 2];
 }
 
-Instrument Ideal() {
-  Instrument instrument;
-  instrument.photons = 0;
-  instrument.jitter_deg = 0;
-  return instrument;
-}
-
 // A phong lobe of width ~0.57° (n = 10^4) read through a 0.01 sr detector (3.2° radius) from a
 // point-like source, at the mirror direction and 1–4° off it. Reference: a 2000×2000 midpoint
-// rule in polar coordinates about each detector axis.
+// rule in polar coordinates about each detector axis (tests/gonio_test_util.h).
 void ApertureStudy() {
-  Instrument instrument = Ideal();
+  Instrument instrument = testing::IdealInstrument();
   instrument.detector_solid_angle_sr = 0.01;
   instrument.source_angular_radius_deg = 0;
   const Model model = ParseModel("phong:rho_d=0:rho_s=1:n=10000");
@@ -62,21 +55,7 @@ void ApertureStudy() {
   const double cone = std::acos(instrument.DetectorCosHalfAngle());
   std::vector<double> reference;
   for (const Vec3& axis : detectors) {
-    const Vec3 u = axis.cross(Vec3(0, 1, 0)).normalized(), v = axis.cross(u);
-    const int steps = 2000;
-    double integral = 0, solid_angle = 0;
-    for (int i = 0; i < steps; ++i) {
-      const double rho = (i + 0.5) * cone / steps;
-      for (int j = 0; j < steps; ++j) {
-        const double phi = (j + 0.5) * 2 * kPi / steps;
-        const Vec3 wo =
-            std::cos(rho) * axis + std::sin(rho) * (std::cos(phi) * u + std::sin(phi) * v);
-        const double dw = std::sin(rho);
-        integral += model.Eval(wi, wo)[0] * wo.z() * dw;
-        solid_angle += dw;
-      }
-    }
-    reference.push_back(integral / solid_angle);
+    reference.push_back(testing::ApertureAverageByGrid(model, wi, axis, cone, 2000));
   }
   ModelSample sample(model, instrument);
   std::printf("density,detector_points,by_rule,max_relative_error,seconds_per_reading\n");
@@ -107,7 +86,7 @@ void AcquisitionStudy() {
   const Model model = ParseModel("blinn-phong:rho_d=0.3:rho_s=0.5:m=200");
   std::printf("method,parameter,samples,seconds,seconds_per_sample,rms_relative_error\n");
   for (int segments : {16, 32, 64, 128, 256, 512}) {
-    Instrument instrument = Ideal();
+    Instrument instrument = testing::IdealInstrument();
     instrument.camera_resolution = 256;
     instrument.sphere_segments = segments;
     const SphereAcquisition acquisition(model, instrument);
@@ -125,7 +104,7 @@ void AcquisitionStudy() {
     std::printf("raster,%d,%zu,%.6g,%.6g,%.6g\n", segments, n, seconds, seconds / n,
                 std::sqrt(sum / n));
   }
-  const Instrument instrument = Ideal();
+  const Instrument instrument = testing::IdealInstrument();
   const Schedule schedule = MakeSchedule("inplane:step=10");
   const Incidence& incidence = schedule.incidences[3];  // 30°
   std::vector<Vec3> detectors;

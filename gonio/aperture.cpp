@@ -64,26 +64,32 @@ std::vector<AperturePoint> ApertureQuadrature(double aperture_radius, double lob
   if (aperture_radius <= 0) return {AperturePoint{0, 0, 1}};
   const double q =
       std::isfinite(lobe_width) ? (lobe_width > 0 ? aperture_radius / lobe_width : 1e9) : 0.0;
-  int rings = std::max(2, static_cast<int>(std::ceil(density * (q + 2))));
-  int spokes = std::max(6, static_cast<int>(std::ceil(density * (2 * kPi * q + 6))));
-  // Cap the total, keeping the ratio of rings to spokes.
-  while (rings * spokes > kMaxAperturePoints) {
-    rings = std::max(2, rings * 9 / 10);
-    spokes = std::max(6, spokes * 9 / 10);
+  // Cap the total at kMaxAperturePoints, keeping the ratio of rings to spokes: rings · spokes
+  // grows as q², so scale q down by the square root of the excess.
+  const auto count = [&](double scale, int* rings, int* spokes) {
+    *rings = std::max(1, static_cast<int>(std::ceil(density * scale * q + 0.5)));
+    *spokes = std::max(4, static_cast<int>(std::ceil(density * (2 * kPi * scale * q + 3))));
+  };
+  int rings = 1, spokes = 4;
+  const double demand = std::pow(density * q + 1, 2) * 2 * kPi;
+  double scale = demand > kMaxAperturePoints ? std::sqrt(kMaxAperturePoints / demand) : 1.0;
+  for (count(scale, &rings, &spokes); double(rings) * spokes > kMaxAperturePoints;
+       count(scale, &rings, &spokes)) {
+    scale *= 0.95;
   }
   std::vector<double> nodes, weights;
   GaussLegendre(rings, &nodes, &weights);
   std::vector<AperturePoint> points;
   points.reserve(size_t(rings) * spokes);
   for (int i = 0; i < rings; ++i) {
-    // Radius r in [0, 1] of the unit disk; area element r dr dphi / π sums to 1. The disk maps
-    // onto the cone with equal area, u1 = r² (SampleUniformCone).
-    const double r = 0.5 * (nodes[i] + 1);
-    const double ring_weight = 0.5 * weights[i] * r * 2;  // (dr = 1/2 dx) · r · 2π/π
+    // u = r² in [0, 1] is the fraction of the aperture's area (and solid angle) inside radius
+    // r; du dphi / 2π sums to 1. A BRDF that is smooth across the aperture is, after the
+    // azimuthal average, smooth in u, so one ring integrates its quadratic part exactly.
+    const double u = 0.5 * (nodes[i] + 1);
     for (int j = 0; j < spokes; ++j) {
       // Spokes of alternate rings are offset by half a step, so no two rings line up.
       const double turn = (j + 0.5 * (i % 2)) / spokes;
-      points.push_back({r * r, turn, ring_weight / spokes});
+      points.push_back({u, turn, 0.5 * weights[i] / spokes});
     }
   }
   return points;

@@ -1,21 +1,21 @@
 // How finely the instrument integrates over its apertures: "as many points as the lobe's width
 // requires" (DESIGN §5). An aperture is a cone of angular radius a; its points are a polar
 // product rule on the equal-area disk that maps onto the cone (sampling.h, SampleUniformCone):
-// Gauss-Legendre in the radius (weighted by r) times the trapezoid rule in azimuth, which
-// converge spectrally for smooth integrands — the trapezoid rule is exponentially accurate for
-// periodic functions (Trefethen & Weideman, SIAM Review 56(3), 2014).
+// Gauss-Legendre in the area fraction u = r² times the trapezoid rule in azimuth. Both converge
+// spectrally for smooth integrands — the trapezoid rule is exponentially accurate for periodic
+// functions (Trefethen & Weideman, SIAM Review 56(3), 2014).
 //
 // The rule: a lobe of angular width sigma seen through radius a varies on the scale q = a/sigma
-// aperture radii, so rings = ceil(q + 2) and spokes = ceil(2π q + 6): about one ring per lobe
-// width plus two, and one spoke per lobe width of circumference plus six (at least two rings and
-// six spokes, which integrate the cos(theta_o) variation of a smooth BRDF exactly to second
-// order), scaled by `density` and capped at kMaxAperturePoints. docs/gonio.md shows the error
-// against the number of points for a sharp lobe: the rule lands near 1e-5, where halving the
-// points would still give 1e-3 and a third of them 4%.
+// aperture radii, so rings = ceil(q + 1/2) and spokes = ceil(2π q + 3): about one ring per lobe
+// width and one spoke per lobe width of circumference, plus a floor. The floor (one ring of
+// four spokes) integrates the quadratic variation of a smooth BRDF times cos(theta_o) exactly.
+// `density` scales the rule; the total is capped at kMaxAperturePoints. docs/gonio.md shows the
+// error against the number of points for a sharp lobe.
 #pragma once
 
 #include <vector>
 
+#include "gonio/instrument.h"
 #include "models/registry.h"
 
 namespace brdf::gonio {
@@ -37,5 +37,22 @@ double LobeWidth(const Model& model);
 // (radius 0) is its centre alone. `density` scales rings and spokes (1 = the rule).
 std::vector<AperturePoint> ApertureQuadrature(double aperture_radius, double lobe_width,
                                               double density = 1.0);
+
+// Calls visit(wi_source, weight) for every point of the source quadrature around the nominal
+// incidence `wi`, the weight combining the quadrature weight and the point's relative
+// irradiance (Instrument::SourceDirection); returns the sum of the weights, to normalise by.
+template <typename Visit>
+double ForEachSourceDirection(const Instrument& instrument, const Vec3& wi,
+                              const std::vector<AperturePoint>& source_quadrature, Visit&& visit) {
+  double weight_sum = 0;
+  for (const AperturePoint& point : source_quadrature) {
+    double irradiance = 1;
+    const Vec3 wi_source = instrument.SourceDirection(wi, point.u1, point.u2, &irradiance);
+    const double weight = point.weight * irradiance;
+    weight_sum += weight;
+    if (weight > 0) visit(wi_source, weight);
+  }
+  return weight_sum;
+}
 
 }  // namespace brdf::gonio

@@ -37,22 +37,17 @@ Rgb ModelSample::Reading(const Instrument& instrument, const Vec3& wi, const Vec
   const double cos_detector = instrument.DetectorCosHalfAngle();
   const Frame detector_frame(wo);
   Rgb sum = Rgb::Zero();
-  double weight_sum = 0;
-  for (const AperturePoint& source : source_quadrature_) {
-    double irradiance = 1;
-    const Vec3 wi_source = instrument.SourceDirection(wi, source.u1, source.u2, &irradiance);
-    const double weight = source.weight * irradiance;
-    weight_sum += weight;
-    if (weight <= 0) continue;
-    Rgb detector_sum = Rgb::Zero();
-    for (const AperturePoint& detector : detector_quadrature_) {
-      const Vec3 wo_detector =
-          detector_frame.FromLocal(SampleUniformCone(detector.u1, detector.u2, cos_detector));
-      if (wo_detector.z() <= 0) continue;
-      detector_sum += detector.weight * model_.Eval(wi_source, wo_detector) * wo_detector.z();
-    }
-    sum += weight * detector_sum;
-  }
+  const double weight_sum = ForEachSourceDirection(
+      instrument, wi, source_quadrature_, [&](const Vec3& wi_source, double weight) {
+        Rgb detector_sum = Rgb::Zero();
+        for (const AperturePoint& detector : detector_quadrature_) {
+          const Vec3 wo_detector =
+              detector_frame.FromLocal(SampleUniformCone(detector.u1, detector.u2, cos_detector));
+          if (wo_detector.z() <= 0) continue;
+          detector_sum += detector.weight * model_.Eval(wi_source, wo_detector) * wo_detector.z();
+        }
+        sum += weight * detector_sum;
+      });
   return weight_sum > 0 ? Rgb(sum / weight_sum) : Rgb(Rgb::Zero());
 }
 

@@ -92,19 +92,14 @@ std::vector<Rgb> FlatSpecularSample::Measure(const Instrument& instrument, const
   const double cos_detector = instrument.DetectorCosHalfAngle();
   const double solid_angle = instrument.detector_solid_angle_sr;
   std::vector<Rgb> readings(detectors.size(), Rgb::Zero());
-  double weight_sum = 0;
-  for (const AperturePoint& source : source_quadrature_) {
-    double irradiance = 1;
-    const Vec3 wi_source = instrument.SourceDirection(wi, source.u1, source.u2, &irradiance);
-    const double weight = source.weight * irradiance;
-    weight_sum += weight;
-    if (weight <= 0) continue;
-    const Vec3 mirror = MirrorDirection(wi_source);
-    const Rgb reflected = weight * material_.Fresnel(wi_source.z());
-    for (size_t k = 0; k < detectors.size(); ++k) {
-      if (mirror.dot(detectors[k]) >= cos_detector) readings[k] += reflected;
-    }
-  }
+  const double weight_sum = ForEachSourceDirection(
+      instrument, wi, source_quadrature_, [&](const Vec3& wi_source, double weight) {
+        const Vec3 mirror = MirrorDirection(wi_source);
+        const Rgb reflected = weight * material_.Fresnel(wi_source.z());
+        for (size_t k = 0; k < detectors.size(); ++k) {
+          if (mirror.dot(detectors[k]) >= cos_detector) readings[k] += reflected;
+        }
+      });
   for (Rgb& reading : readings) reading /= weight_sum * solid_angle;
   return readings;
 }

@@ -5,35 +5,24 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "gonio/aperture.h"
 #include "gonio/instrument.h"
 #include "gonio/measure.h"
 #include "gonio/schedule.h"
+#include "gonio_test_util.h"
 #include "models/model_string.h"
 #include "test_util.h"
 
 namespace brdf::gonio {
 namespace {
 
-Instrument IdealInstrument() {
-  Instrument instrument;
-  instrument.photons = 0;
-  instrument.jitter_deg = 0;
-  return instrument;
-}
-
-Schedule OneIncidence(double theta_i_deg, const std::vector<Vec3>& detectors) {
-  Schedule schedule;
-  schedule.spec = "test";
-  schedule.kind = "test";
-  Incidence incidence{SphericalDirection(DegToRad(theta_i_deg), 0), {}};
-  for (const Vec3& wo : detectors) incidence.detectors.push_back({wo, 0});
-  schedule.incidences.push_back(incidence);
-  return schedule;
-}
+using testing::IdealInstrument;
+using testing::OneIncidence;
 
 // Issue 5: lambert rho_d = 0.5 measured with the default instrument and fitted with lambert.
 // The Ceres fitter lives on another branch, so the fit is the closed-form weighted least-squares
@@ -84,24 +73,9 @@ TEST(GonioModelTest, SharpLobeReadsTheApertureAverage) {
 
   const double cone = std::acos(1 - instrument.detector_solid_angle_sr / (2 * kPi));
   const auto aperture_average = [&](const Model& m, const Vec3& incidence, const Vec3& axis) {
-    // Midpoint rule in (polar offset rho, azimuth) about the axis: dω = sin(rho) drho dphi.
-    const Vec3 helper = std::abs(axis.z()) < 0.9 ? Vec3(0, 0, 1) : Vec3(1, 0, 0);
-    const Vec3 u = axis.cross(helper).normalized(), v = axis.cross(u);
-    const int steps = 600;
-    double integral = 0, solid_angle = 0;
-    for (int i = 0; i < steps; ++i) {
-      const double rho = (i + 0.5) * cone / steps;
-      for (int j = 0; j < steps; ++j) {
-        const double phi = (j + 0.5) * 2 * kPi / steps;
-        const Vec3 wo =
-            std::cos(rho) * axis + std::sin(rho) * (std::cos(phi) * u + std::sin(phi) * v);
-        const double dw = std::sin(rho) * (cone / steps) * (2 * kPi / steps);
-        integral += m.Eval(incidence, wo)[0] * wo.z() * dw;
-        solid_angle += dw;
-      }
-    }
-    return integral / solid_angle;
+    return testing::ApertureAverageByGrid(m, incidence, axis, cone, 600);
   };
+
   // The calibration divides by the reference read through the same aperture.
   const Model reference = ParseModel("lambert:rho_d=0.99");
   const Vec3 reference_wo = SphericalDirection(DegToRad(45), kPi);
@@ -194,6 +168,27 @@ TEST(GonioModelTest, PointSourceReadsLambertianAlbedo) {
   for (const Sample& s : m.samples) EXPECT_NEAR(s.value[0], 0.6 / kPi, 2e-3 * 0.6 / kPi);
 }
 
+TEST(GonioApertureTest, QuadratureWeightsAndBounds) {
+  const double radius = DegToRad(3);
+  for (double lobe : {std::numeric_limits<double>::infinity(), DegToRad(5.0), DegToRad(0.2), 0.0}) {
+    const std::vector<AperturePoint> points = ApertureQuadrature(radius, lobe);
+    ASSERT_LE(points.size(), size_t(kMaxAperturePoints));
+    double sum = 0, mean_u = 0, mean_u_squared = 0;
+    for (const AperturePoint& p : points) {
+      sum += p.weight;
+      mean_u += p.weight * p.u1;
+      mean_u_squared += p.weight * p.u1 * p.u1;
+    }
+    EXPECT_NEAR(sum, 1, 1e-12);
+    EXPECT_NEAR(mean_u, 0.5, 1e-12);  // u = r² is uniform on [0, 1] over the disk
+    if (points.size() > 4) {
+      EXPECT_NEAR(mean_u_squared, 1.0 / 3, 1e-12);
+    }
+  }
+  EXPECT_EQ(ApertureQuadrature(0, 0.1).size(), 1u);  // a point aperture is its centre
+  EXPECT_EQ(ApertureQuadrature(radius, std::numeric_limits<double>::infinity()).size(), 4u);
+}
+
 TEST(GonioScheduleTest, EqualAreaCellsPartitionTheHemisphere) {
   for (int cells : {1, 7, 100, 1000}) {
     const std::vector<Vec3> centres = EqualAreaCells(cells);
@@ -248,17 +243,17 @@ TEST(GonioInstrumentTest, JsonErrorsNameFileAndField) {
 }
 
 TEST(GonioCliTest, SameSeedSameBytesWhateverTheThreadCount) {
-  testing::ScratchDir dir;
+  brdf::testing::ScratchDir dir;
   const std::string common =
       "measure --quiet --seed 11 --sample model:blinn-phong:rho_s=0.3:m=2000 "
       "--schedule hemisphere:theta_i_step=15:theta_o_step=10:phi_o_step=10 --out ";
-  ASSERT_EQ(testing::RunBrdf(common + dir.File("one.csv") + " --threads 1").exit_status, 0);
-  ASSERT_EQ(testing::RunBrdf(common + dir.File("two.csv") + " --threads 2").exit_status, 0);
-  const std::string one = testing::ReadFileText(dir.File("one.csv"));
+  ASSERT_EQ(brdf::testing::RunBrdf(common + dir.File("one.csv") + " --threads 1").exit_status, 0);
+  ASSERT_EQ(brdf::testing::RunBrdf(common + dir.File("two.csv") + " --threads 2").exit_status, 0);
+  const std::string one = brdf::testing::ReadFileText(dir.File("one.csv"));
   EXPECT_GT(one.size(), 10000u);
-  EXPECT_EQ(one, testing::ReadFileText(dir.File("two.csv")));
-  const testing::CommandResult bad =
-      testing::RunBrdf("measure --sample model:nope --out " + dir.File("x.csv"));
+  EXPECT_EQ(one, brdf::testing::ReadFileText(dir.File("two.csv")));
+  const brdf::testing::CommandResult bad =
+      brdf::testing::RunBrdf("measure --sample model:nope --out " + dir.File("x.csv"));
   EXPECT_EQ(bad.exit_status, 2);
   EXPECT_EQ(dir.CountEntries(), 2);
 }

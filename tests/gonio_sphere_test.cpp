@@ -9,6 +9,7 @@
 #include "gonio/measure.h"
 #include "gonio/rasterizer.h"
 #include "gonio/sphere_acquisition.h"
+#include "gonio_test_util.h"
 #include "models/model_string.h"
 #include "test_util.h"
 
@@ -16,9 +17,7 @@ namespace brdf::gonio {
 namespace {
 
 Instrument IdealCamera() {
-  Instrument instrument;
-  instrument.photons = 0;
-  instrument.jitter_deg = 0;
+  Instrument instrument = testing::IdealInstrument();
   instrument.camera_resolution = 128;
   return instrument;
 }
@@ -112,16 +111,16 @@ TEST(GonioRasterTest, SphereSamplesMatchTheModelAndAFitRecoversIt) {
 }
 
 TEST(GonioRasterTest, SphereRunIsIdenticalWithOneAndTwoThreads) {
-  testing::ScratchDir dir;
+  brdf::testing::ScratchDir dir;
   const std::string instrument =
       dir.Write("camera.json", R"({"camera": {"resolution": 48, "sphere_segments": 64}})");
   const std::string common = "measure --quiet --seed 9 --sample sphere:phong:n=50 --instrument " +
                              instrument + " --schedule inplane:step=30 --out ";
-  ASSERT_EQ(testing::RunBrdf(common + dir.File("one.csv") + " --threads 1").exit_status, 0);
-  ASSERT_EQ(testing::RunBrdf(common + dir.File("two.csv") + " --threads 2").exit_status, 0);
-  const std::string one = testing::ReadFileText(dir.File("one.csv"));
+  ASSERT_EQ(brdf::testing::RunBrdf(common + dir.File("one.csv") + " --threads 1").exit_status, 0);
+  ASSERT_EQ(brdf::testing::RunBrdf(common + dir.File("two.csv") + " --threads 2").exit_status, 0);
+  const std::string one = brdf::testing::ReadFileText(dir.File("one.csv"));
   EXPECT_NE(one.find("rasterized at 48x48"), std::string::npos);
-  EXPECT_EQ(one, testing::ReadFileText(dir.File("two.csv")));
+  EXPECT_EQ(one, brdf::testing::ReadFileText(dir.File("two.csv")));
 }
 
 }  // namespace

@@ -14,26 +14,14 @@
 #include "gonio/model_sample.h"
 #include "gonio/surface_sample.h"
 #include "gonio/traced_surface.h"
+#include "gonio_test_util.h"
 #include "test_util.h"
 
 namespace brdf::gonio {
 namespace {
 
-Instrument IdealInstrument() {
-  Instrument instrument;
-  instrument.photons = 0;
-  instrument.jitter_deg = 0;
-  return instrument;
-}
-
-Schedule OneIncidence(double theta_i_deg, const std::vector<Vec3>& detectors) {
-  Schedule schedule;
-  schedule.spec = schedule.kind = "test";
-  Incidence incidence{SphericalDirection(DegToRad(theta_i_deg), 0), {}};
-  for (const Vec3& wo : detectors) incidence.detectors.push_back({wo, 0});
-  schedule.incidences.push_back(incidence);
-  return schedule;
-}
+using testing::IdealInstrument;
+using testing::OneIncidence;
 
 // Unpolarized Fresnel reflectance of a dielectric of index n from air, written with real
 // arithmetic (Hecht, Optics, §4.6) so that it checks the complex form used by the code.
@@ -65,7 +53,7 @@ TEST(GonioSurfaceTest, FresnelMatchesTheComplexAmplitudes) {
 }
 
 TEST(GonioSurfaceTest, FlatLambertianReadsRhoOverPiWithoutABvh) {
-  testing::ScratchDir dir;
+  brdf::testing::ScratchDir dir;
   const std::string path =
       dir.Write("flat.json", R"({"heightfield": {"kind": "flat"}, "base": "lambert:rho_d=0.8"})");
   const Instrument instrument = IdealInstrument();
@@ -83,7 +71,7 @@ TEST(GonioSurfaceTest, FlatLambertianReadsRhoOverPiWithoutABvh) {
 }
 
 TEST(GonioSurfaceTest, FlatMirrorPutsTheFresnelReflectanceInTheSpecularCell) {
-  testing::ScratchDir dir;
+  brdf::testing::ScratchDir dir;
   const std::string path =
       dir.Write("glass.json", R"({"heightfield": {"kind": "flat"}, "base": "dielectric:ior=1.5"})");
   const Instrument instrument = IdealInstrument();
@@ -171,21 +159,21 @@ TEST(GonioSurfaceTest, RoughConductorConservesEnergyAndIsReciprocal) {
 }
 
 TEST(GonioSurfaceTest, TracedRunIsIdenticalWithOneAndTwoThreads) {
-  testing::ScratchDir dir;
+  brdf::testing::ScratchDir dir;
   const std::string surface = dir.Write(
       "rough.json",
       R"({"heightfield": {"kind": "v-grooves", "rms_slope": 0.5, "resolution": 32, "period": 8},
           "base": "lambert:rho_d=0.7", "rays_per_incidence": 20000})");
   const std::string common =
       "measure --quiet --seed 4 --sample surface:" + surface + " --schedule inplane:step=30 --out ";
-  ASSERT_EQ(testing::RunBrdf(common + dir.File("one.csv") + " --threads 1").exit_status, 0);
-  ASSERT_EQ(testing::RunBrdf(common + dir.File("two.csv") + " --threads 2").exit_status, 0);
-  const std::string one = testing::ReadFileText(dir.File("one.csv"));
+  ASSERT_EQ(brdf::testing::RunBrdf(common + dir.File("one.csv") + " --threads 1").exit_status, 0);
+  ASSERT_EQ(brdf::testing::RunBrdf(common + dir.File("two.csv") + " --threads 2").exit_status, 0);
+  const std::string one = brdf::testing::ReadFileText(dir.File("one.csv"));
   EXPECT_NE(one.find("ray traced with Embree"), std::string::npos);
-  EXPECT_EQ(one, testing::ReadFileText(dir.File("two.csv")));
+  EXPECT_EQ(one, brdf::testing::ReadFileText(dir.File("two.csv")));
   const std::string bad = dir.Write("bad.json", R"({"heightfield": {"kind": "fractal"}})");
-  const testing::CommandResult result =
-      testing::RunBrdf("measure --sample surface:" + bad + " --out " + dir.File("x.csv"));
+  const brdf::testing::CommandResult result =
+      brdf::testing::RunBrdf("measure --sample surface:" + bad + " --out " + dir.File("x.csv"));
   EXPECT_EQ(result.exit_status, 2);
   EXPECT_NE(result.err.find("heightfield.kind"), std::string::npos) << result.err;
 }
@@ -193,7 +181,7 @@ TEST(GonioSurfaceTest, TracedRunIsIdenticalWithOneAndTwoThreads) {
 // A height map from an EXR file: v-grooves written by the test and read back as kind "file"
 // give the same facets (and so the same slope) as the procedural grooves.
 TEST(GonioSurfaceTest, ExrHeightMapIsReadAsWritten) {
-  testing::ScratchDir dir;
+  brdf::testing::ScratchDir dir;
   HeightFieldSpec grooves;
   grooves.kind = "v-grooves";
   grooves.rms_slope = 0.5;
