@@ -57,6 +57,21 @@ double ReferenceReading(const Instrument& instrument) {
 
 }  // namespace
 
+namespace {
+
+// Photon counts with shot noise plus Gaussian read noise. Above kPoissonLimit counts the
+// Poisson law is replaced by its normal approximation, and the two independent Gaussians by one
+// of the summed variance (one random draw instead of two).
+constexpr double kPoissonLimit = 30;
+
+double NoisyCounts(double expected, double read_variance, Rng* rng) {
+  if (expected > kPoissonLimit)
+    return expected + std::sqrt(expected + read_variance) * rng->Normal();
+  return rng->Poisson(expected) + std::sqrt(read_variance) * rng->Normal();
+}
+
+}  // namespace
+
 Calibration::Calibration(const Instrument& instrument, double reference_reading, uint64_t seed)
     : instrument_(instrument),
       seed_(seed),
@@ -71,7 +86,7 @@ Calibration::Calibration(const Instrument& instrument, double reference_reading,
   double sum = 0;
   for (int r = 0; r < instrument.reference_readings; ++r) {
     Rng rng(seed, Stream::kReferenceNoise, r);
-    sum += rng.Poisson(expected) + instrument.read_noise * rng.Normal();
+    sum += NoisyCounts(expected, instrument.read_noise * instrument.read_noise, &rng);
   }
   reference_counts_ = sum / instrument.reference_readings;
   reference_counts_variance_ =
@@ -106,7 +121,7 @@ void Calibration::CalibrateRatio(const Rgb& reading, const Rgb& reference_readin
     const double expected = ExpectedCounts(reading[c]);
     double counts = expected, variance = 0;
     if (instrument_.photons > 0) {
-      counts = rng.Poisson(expected) + instrument_.read_noise * rng.Normal();
+      counts = NoisyCounts(expected, read_variance, &rng);
       variance = expected + read_variance;
     }
     double reference_counts = reference_counts_, reference_variance = reference_counts_variance_;
@@ -116,7 +131,7 @@ void Calibration::CalibrateRatio(const Rgb& reading, const Rgb& reference_readin
       reference_counts = reference_expected;
       reference_variance = 0;
       if (instrument_.photons > 0) {
-        reference_counts = rng.Poisson(reference_expected) + instrument_.read_noise * rng.Normal();
+        reference_counts = NoisyCounts(reference_expected, read_variance, &rng);
         reference_variance = reference_expected + read_variance;
       }
       scale = instrument_.reference_rho * kInvPi;

@@ -98,10 +98,20 @@ GBuffer Rasterize(const TriangleMesh& mesh, const PinholeCamera& camera) {
       }
     }
   }
+  // Bin the triangles by the bands of rows their bounding boxes touch, in mesh order.
   const int bands = (n + kRowsPerBand - 1) / kRowsPerBand;
+  std::vector<std::vector<unsigned>> band_triangles(bands);
+  for (unsigned t : visible) {
+    const glm::uvec3& tri = mesh.triangles[t];
+    const double low = std::min({screen[tri[0]].y, screen[tri[1]].y, screen[tri[2]].y});
+    const double high = std::max({screen[tri[0]].y, screen[tri[1]].y, screen[tri[2]].y});
+    const int first = std::max(0, static_cast<int>(std::floor(low)) / kRowsPerBand);
+    const int last = std::min(bands - 1, static_cast<int>(std::ceil(high)) / kRowsPerBand);
+    for (int band = first; band <= last; ++band) band_triangles[band].push_back(t);
+  }
   tbb::parallel_for(0, bands, [&](int band) {
     const int row_begin = band * kRowsPerBand, row_end = std::min(n, row_begin + kRowsPerBand);
-    for (unsigned t : visible) {
+    for (unsigned t : band_triangles[band]) {
       const glm::uvec3& tri = mesh.triangles[t];
       const ScreenVertex &a = screen[tri[0]], &b = screen[tri[1]], &c = screen[tri[2]];
       const double area = Edge(a, b, c.x, c.y);

@@ -51,7 +51,7 @@ class Rng {
     return radius * std::cos(2.0 * kPi * u2);
   }
   // Poisson count with the given mean: Knuth's product method for small means, the normal
-  // approximation (rounded, clamped at 0) above 30 where its relative error is below 2%.
+  // approximation (rounded, clamped at 0) above 30.
   double Poisson(double mean) {
     if (mean <= 0) return 0;
     if (mean > 30) return std::fmax(0.0, std::round(mean + std::sqrt(mean) * Normal()));

@@ -75,9 +75,9 @@ SphereAcquisition::View SphereAcquisition::Shade(const GBuffer& gbuffer, double 
   const Vec3 light = PerturbDirection(light_nominal, DegToRad(instrument_.jitter_deg), g1, g2);
   const Calibration calibration(instrument_, instrument_.reference_rho * kInvPi, seed);
   const double reference_scale = instrument_.reference_rho * kInvPi;
-  std::vector<Sample> samples(size_t(n) * n);
-  std::vector<Rgb> sigma(size_t(n) * n);
-  std::vector<char> present(size_t(n) * n, 0);
+  // One list per row (only covered pixels), joined in row order afterwards.
+  std::vector<std::vector<Sample>> row_samples(n);
+  std::vector<std::vector<Rgb>> row_sigma(n);
   const glm::dvec3 eye = camera_.eye;
   const PinholeCamera::Basis basis = camera_.MakeBasis();
   const double cos_max_theta = std::cos(DegToRad(instrument_.camera_max_theta_deg));
@@ -106,16 +106,14 @@ SphereAcquisition::View SphereAcquisition::Shade(const GBuffer& gbuffer, double 
       calibration.CalibrateRatio(radiance, reference_radiance, view_index * n * n + pixel, &value,
                                  &value_sigma);
       ToLocal(normal, light_nominal, wo, &wi_local, &wo_local);
-      samples[pixel] = {wi_local, wo_local, value, false};
-      sigma[pixel] = value_sigma;
-      present[pixel] = 1;
+      row_samples[y].push_back({wi_local, wo_local, value, false});
+      row_sigma[y].push_back(value_sigma);
     }
   });
   View view;
-  for (size_t pixel = 0; pixel < samples.size(); ++pixel) {
-    if (!present[pixel]) continue;
-    view.samples.push_back(samples[pixel]);
-    view.sigma.push_back(sigma[pixel]);
+  for (int y = 0; y < n; ++y) {
+    view.samples.insert(view.samples.end(), row_samples[y].begin(), row_samples[y].end());
+    view.sigma.insert(view.sigma.end(), row_sigma[y].begin(), row_sigma[y].end());
   }
   return view;
 }
