@@ -123,5 +123,21 @@ TEST(GonioRasterTest, SphereRunIsIdenticalWithOneAndTwoThreads) {
   EXPECT_EQ(one, brdf::testing::ReadFileText(dir.File("two.csv")));
 }
 
+// The merl schedule writes MERL .binary (the sphere's pixels binned into the half/difference
+// cells), and only MERL .binary.
+TEST(GonioRasterTest, MerlScheduleWritesMerlBinary) {
+  brdf::testing::ScratchDir dir;
+  const std::string instrument = dir.Write("camera.json", R"({"camera": {"resolution": 64}})");
+  const std::string common =
+      "measure --quiet --sample sphere:lambert:rho_d=0.5 --schedule merl --instrument " +
+      instrument;
+  const auto written = brdf::testing::RunBrdf(common + " --out " + dir.File("s.binary"));
+  ASSERT_EQ(written.exit_status, 0) << written.err;
+  EXPECT_EQ(brdf::testing::ReadFileText(dir.File("s.binary")).size(), 34992012u);
+  const auto refused = brdf::testing::RunBrdf(common + " --out " + dir.File("s.csv"));
+  EXPECT_EQ(refused.exit_status, 2);
+  EXPECT_NE(refused.err.find("merl"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace brdf::gonio

@@ -40,8 +40,8 @@ Command AddMeasureCommand(CLI::App& parent) {
   app->add_option("--instrument", options->instrument,
                   "instrument JSON (every field optional; default: collimated source of 0.25 deg "
                   "radius, 1e-3 sr detector, 1e6 reference counts, read noise 10, jitter "
-                  "0.05 deg, no stray light, Lambertian reference rho=0.99 at 0/45 deg; see "
-                  "docs/gonio.md)");
+                  "0.05 deg, no stray light, Lambertian reference rho=0.99 at 0/45 deg, camera "
+                  "128x128 px at 10 sphere radii; see docs/gonio.md)");
   app->add_option("--seed", options->seed, "random seed; equal seeds give identical files")
       ->capture_default_str();
   app->add_option("--threads", options->threads,
@@ -51,7 +51,7 @@ Command AddMeasureCommand(CLI::App& parent) {
   app->add_flag("--quiet", options->quiet, "no progress bar on stderr");
   app->add_option("--out", options->out,
                   "output measurement: native CSV (.csv, with sigma columns), or MERL .binary "
-                  "(required for, and implied by, the merl schedule)")
+                  "(with, and only with, the merl schedule)")
       ->required();
 
   return {app, [options]() {
@@ -69,11 +69,11 @@ Command AddMeasureCommand(CLI::App& parent) {
               measure.instrument_name = options->instrument;
             }
             const gonio::Schedule schedule = gonio::MakeSchedule(options->schedule);
-            const std::string format = schedule.kind == "merl" ? "merl" : "";
-            const FileFormat& output_format = OutputFormat(options->out, format);
-            if (schedule.kind != "merl" && output_format.name == "merl") {
+            const FileFormat& output_format = OutputFormat(options->out);
+            if ((schedule.kind == "merl") != (output_format.name == "merl")) {
               throw UsageError(options->out +
-                               ": MERL .binary output needs the merl schedule (--schedule merl)");
+                               ": the merl schedule and MERL .binary output go together "
+                               "(--schedule merl --out FILE.binary)");
             }
             Progress progress("measuring", gonio::CountReadings(measure, schedule), options->quiet);
             measure.advance = [&progress](int64_t done) { progress.Advance(done); };
