@@ -102,47 +102,42 @@ double Calibration::ExpectedCounts(double reading) const {
 
 void Calibration::Calibrate(const Rgb& reading, double cos_theta_o, uint64_t rng_index, Rgb* value,
                             Rgb* sigma) const {
-  const Rgb unit = Rgb::Ones();
-  Rgb ratio, ratio_sigma;
-  CalibrateRatio(reading, unit * 0, rng_index, &ratio, &ratio_sigma);
-  *value = ratio * (ideal_reference_reading_ / cos_theta_o);
-  *sigma = ratio_sigma * (ideal_reference_reading_ / cos_theta_o);
+  Ratio(reading, nullptr, rng_index, value, sigma);
+  *value *= ideal_reference_reading_ / cos_theta_o;
+  *sigma *= ideal_reference_reading_ / cos_theta_o;
 }
 
 void Calibration::CalibrateRatio(const Rgb& reading, const Rgb& reference_reading,
                                  uint64_t rng_index, Rgb* value, Rgb* sigma) const {
-  // With a zero reference_reading this returns counts / counts_ref of the run's reference
-  // (Calibrate); otherwise the reference is read at the same geometry with its own noise and
-  // the ratio is scaled by rho/π.
-  const bool same_geometry = (reference_reading > 0).any();
+  Ratio(reading, &reference_reading, rng_index, value, sigma);
+  *value *= instrument_.reference_rho * kInvPi;
+  *sigma *= instrument_.reference_rho * kInvPi;
+}
+
+void Calibration::Ratio(const Rgb& reading, const Rgb* reference_reading, uint64_t rng_index,
+                        Rgb* ratio, Rgb* sigma) const {
   Rng rng(seed_, Stream::kReadingNoise, rng_index);
   const double read_variance = instrument_.read_noise * instrument_.read_noise;
+  const bool noisy = instrument_.photons > 0;
   for (int c = 0; c < 3; ++c) {
     const double expected = ExpectedCounts(reading[c]);
-    double counts = expected, variance = 0;
-    if (instrument_.photons > 0) {
-      counts = NoisyCounts(expected, read_variance, &rng);
-      variance = expected + read_variance;
-    }
+    const double counts = noisy ? NoisyCounts(expected, read_variance, &rng) : expected;
+    const double variance = noisy ? expected + read_variance : 0;
+    // The run's reference, or a reference read at this same geometry with its own noise.
     double reference_counts = reference_counts_, reference_variance = reference_counts_variance_;
-    double scale = 1;
-    if (same_geometry) {
-      const double reference_expected = ExpectedCounts(reference_reading[c]);
-      reference_counts = reference_expected;
-      reference_variance = 0;
-      if (instrument_.photons > 0) {
-        reference_counts = NoisyCounts(reference_expected, read_variance, &rng);
-        reference_variance = reference_expected + read_variance;
-      }
-      scale = instrument_.reference_rho * kInvPi;
+    if (reference_reading != nullptr) {
+      const double reference_expected = ExpectedCounts((*reference_reading)[c]);
+      reference_counts =
+          noisy ? NoisyCounts(reference_expected, read_variance, &rng) : reference_expected;
+      reference_variance = noisy ? reference_expected + read_variance : 0;
     }
-    if (reference_counts <= 0)
-      throw ComputeError("reference reading is zero: no signal to calibrate");
-    const double ratio = counts / reference_counts;
-    (*value)[c] = ratio * scale;
+    if (reference_counts <= 0) {
+      throw ComputeError("the reference reading has no signal: nothing to calibrate against");
+    }
+    (*ratio)[c] = counts / reference_counts;
     // First-order propagation of the two independent count errors through the ratio.
     (*sigma)[c] =
-        scale * std::sqrt(variance + ratio * ratio * reference_variance) / reference_counts;
+        std::sqrt(variance + (*ratio)[c] * (*ratio)[c] * reference_variance) / reference_counts;
   }
 }
 

@@ -56,6 +56,10 @@ class Calibration {
 
  private:
   double ExpectedCounts(double reading) const;
+  // counts / counts_ref and its one-sigma uncertainty; the reference is the run's, or read at
+  // the same geometry when `reference_reading` is given.
+  void Ratio(const Rgb& reading, const Rgb* reference_reading, uint64_t rng_index, Rgb* ratio,
+             Rgb* sigma) const;
 
   const Instrument& instrument_;
   uint64_t seed_;
