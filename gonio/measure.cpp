@@ -100,6 +100,11 @@ double Calibration::ExpectedCounts(double reading) const {
   return instrument_.photons > 0 ? instrument_.photons * relative : relative;
 }
 
+double Calibration::Slope(double cos_theta_o) const {
+  const double counts_per_reading = ExpectedCounts(1.0) - ExpectedCounts(0.0);
+  return counts_per_reading / reference_counts_ * ideal_reference_reading_ / cos_theta_o;
+}
+
 void Calibration::Calibrate(const Rgb& reading, double cos_theta_o, uint64_t rng_index, Rgb* value,
                             Rgb* sigma) const {
   Ratio(reading, nullptr, rng_index, value, sigma);
@@ -221,12 +226,19 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
       detectors.push_back(PerturbDirection(wo, jitter, h1, h2));
       indices.push_back(index);
     }
-    const std::vector<Rgb> readings =
+    const Readings readings =
         sample->Measure(instrument, wi, detectors, options.seed, static_cast<uint64_t>(g));
     for (size_t j = 0; j < indices.size(); ++j) {
       const size_t index = indices[j];
       const double cos_theta_o = incidence.detectors[index - offsets[g]].wo.z();
-      calibration.Calibrate(readings[j], cos_theta_o, index, &values[index], &sigmas[index]);
+      calibration.Calibrate(readings.value[j], cos_theta_o, index, &values[index], &sigmas[index]);
+      if (!readings.standard_error.empty()) {
+        // A traced sample's Monte Carlo error, independent of the detector noise; calibration
+        // is linear in the reading, so its slope carries the standard error over.
+        const double slope = calibration.Slope(cos_theta_o);
+        sigmas[index] =
+            (sigmas[index].square() + (slope * readings.standard_error[j]).square()).sqrt();
+      }
     }
     if (options.advance) options.advance(static_cast<int64_t>(incidence.detectors.size()));
   });

@@ -53,6 +53,8 @@ class Calibration {
                       Rgb* value, Rgb* sigma) const;
 
   double reference_counts() const { return reference_counts_; }
+  // d(value)/d(reading) of Calibrate: how an error of the reading becomes an error of the BRDF.
+  double Slope(double cos_theta_o) const;
 
  private:
   double ExpectedCounts(double reading) const;

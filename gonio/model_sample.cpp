@@ -51,12 +51,13 @@ Rgb ModelSample::Reading(const Instrument& instrument, const Vec3& wi, const Vec
   return weight_sum > 0 ? Rgb(sum / weight_sum) : Rgb(Rgb::Zero());
 }
 
-std::vector<Rgb> ModelSample::Measure(const Instrument& instrument, const Vec3& wi,
-                                      const std::vector<Vec3>& detectors, uint64_t /*seed*/,
-                                      uint64_t /*incidence_index*/) const {
-  std::vector<Rgb> readings(detectors.size(), Rgb::Zero());
+Readings ModelSample::Measure(const Instrument& instrument, const Vec3& wi,
+                              const std::vector<Vec3>& detectors, uint64_t /*seed*/,
+                              uint64_t /*incidence_index*/) const {
+  Readings readings;
+  readings.value.assign(detectors.size(), Rgb::Zero());
   tbb::parallel_for(size_t{0}, detectors.size(),
-                    [&](size_t k) { readings[k] = Reading(instrument, wi, detectors[k]); });
+                    [&](size_t k) { readings.value[k] = Reading(instrument, wi, detectors[k]); });
   return readings;
 }
 

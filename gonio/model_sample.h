@@ -18,9 +18,8 @@ class ModelSample : public GonioSample {
   ModelSample(Model model, const Instrument& instrument);
 
   std::string Modelled() const override;
-  std::vector<Rgb> Measure(const Instrument& instrument, const Vec3& wi,
-                           const std::vector<Vec3>& detectors, uint64_t seed,
-                           uint64_t incidence_index) const override;
+  Readings Measure(const Instrument& instrument, const Vec3& wi, const std::vector<Vec3>& detectors,
+                   uint64_t seed, uint64_t incidence_index) const override;
 
   // The reading of one detector (exposed for the reference and for tests).
   Rgb Reading(const Instrument& instrument, const Vec3& wi, const Vec3& wo) const;

@@ -11,6 +11,13 @@
 
 namespace brdf::gonio {
 
+// Readings of one incidence, one per detector (sr^-1), and for Monte Carlo samples the standard
+// error of each (empty for deterministic samples).
+struct Readings {
+  std::vector<Rgb> value;
+  std::vector<Rgb> standard_error;
+};
+
 class GonioSample {
  public:
   virtual ~GonioSample() = default;
@@ -24,9 +31,9 @@ class GonioSample {
   // averaged over the source's incidence directions wi' weighted by their irradiance
   // (Instrument::SourceDirection). Monte Carlo samples draw their random numbers from streams
   // derived from (seed, incidence_index) only, so results do not depend on threads.
-  virtual std::vector<Rgb> Measure(const Instrument& instrument, const Vec3& wi,
-                                   const std::vector<Vec3>& detectors, uint64_t seed,
-                                   uint64_t incidence_index) const = 0;
+  virtual Readings Measure(const Instrument& instrument, const Vec3& wi,
+                           const std::vector<Vec3>& detectors, uint64_t seed,
+                           uint64_t incidence_index) const = 0;
 };
 
 }  // namespace brdf::gonio

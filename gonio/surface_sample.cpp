@@ -84,9 +84,9 @@ std::string FlatSpecularSample::Modelled() const {
          " source points, no ray tracing, no BVH";
 }
 
-std::vector<Rgb> FlatSpecularSample::Measure(const Instrument& instrument, const Vec3& wi,
-                                             const std::vector<Vec3>& detectors, uint64_t /*seed*/,
-                                             uint64_t /*incidence_index*/) const {
+Readings FlatSpecularSample::Measure(const Instrument& instrument, const Vec3& wi,
+                                     const std::vector<Vec3>& detectors, uint64_t /*seed*/,
+                                     uint64_t /*incidence_index*/) const {
   // Reading = (1/Ω) · (power fraction into the detector): each source direction reflects
   // F(theta_i') of its power into its mirror direction.
   const double cos_detector = instrument.DetectorCosHalfAngle();
@@ -101,7 +101,7 @@ std::vector<Rgb> FlatSpecularSample::Measure(const Instrument& instrument, const
         }
       });
   for (Rgb& reading : readings) reading /= weight_sum * solid_angle;
-  return readings;
+  return {readings, {}};
 }
 
 }  // namespace brdf::gonio

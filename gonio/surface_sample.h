@@ -47,9 +47,8 @@ class FlatSpecularSample : public GonioSample {
  public:
   FlatSpecularSample(FacetMaterial material, const Instrument& instrument);
   std::string Modelled() const override;
-  std::vector<Rgb> Measure(const Instrument& instrument, const Vec3& wi,
-                           const std::vector<Vec3>& detectors, uint64_t seed,
-                           uint64_t incidence_index) const override;
+  Readings Measure(const Instrument& instrument, const Vec3& wi, const std::vector<Vec3>& detectors,
+                   uint64_t seed, uint64_t incidence_index) const override;
 
  private:
   FacetMaterial material_;

@@ -200,8 +200,8 @@ std::string TracedSurfaceSample::Modelled() const {
          std::to_string(2 * int64_t(field_.resolution) * field_.resolution) +
          " triangles), up to " + std::to_string(spec_.bounces) +
          " bounces with Russian roulette, " + std::to_string(spec_.rays_per_incidence) +
-         " rays per incidence; masking, shadowing and interreflection traced; Monte Carlo "
-         "error not included in sigma";
+         " rays per incidence; masking, shadowing and interreflection traced; sigma includes "
+         "the Monte Carlo standard error";
 }
 
 TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
@@ -267,17 +267,36 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
     total.segments += trace.segments;
     total.paths_cut += trace.paths_cut;
   }
+  // Monte Carlo standard error of each detector's power, from the spread of the batches'
+  // fractions x_b = power_b / incident_b about the pooled fraction: the batches are independent,
+  // so the pooled estimate's variance is about var(x_b) / B (in units of total incident power).
+  total.detector_power_standard_error.assign(detectors.size(), Rgb::Zero());
+  if (batches > 1) {
+    for (size_t k = 0; k < detectors.size(); ++k) {
+      const Rgb pooled = total.detector_power[k] / total.incident;
+      Rgb sum_squares = Rgb::Zero();
+      for (const Trace& trace : partial) {
+        if (trace.incident <= 0) continue;
+        sum_squares += (trace.detector_power[k] / trace.incident - pooled).square();
+      }
+      total.detector_power_standard_error[k] =
+          (sum_squares / double(batches - 1) / double(batches)).sqrt() * total.incident;
+    }
+  }
   return total;
 }
 
-std::vector<Rgb> TracedSurfaceSample::Measure(const Instrument& instrument, const Vec3& wi,
-                                              const std::vector<Vec3>& detectors, uint64_t seed,
-                                              uint64_t incidence_index) const {
+Readings TracedSurfaceSample::Measure(const Instrument& instrument, const Vec3& wi,
+                                      const std::vector<Vec3>& detectors, uint64_t seed,
+                                      uint64_t incidence_index) const {
   const Trace trace =
       TraceIncidence(instrument, wi, detectors, seed, incidence_index, spec_.rays_per_incidence);
-  std::vector<Rgb> readings(detectors.size());
+  Readings readings;
   const double scale = 1.0 / (trace.incident * instrument.detector_solid_angle_sr);
-  for (size_t k = 0; k < detectors.size(); ++k) readings[k] = trace.detector_power[k] * scale;
+  for (size_t k = 0; k < detectors.size(); ++k) {
+    readings.value.push_back(trace.detector_power[k] * scale);
+    readings.standard_error.push_back(trace.detector_power_standard_error[k] * scale);
+  }
   return readings;
 }
 

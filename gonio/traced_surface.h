@@ -27,7 +27,8 @@ class TracedSurfaceSample : public GonioSample {
   // incident power (the incident power is the sum of the rays' source weights).
   struct Trace {
     std::vector<Rgb> detector_power;
-    Rgb reflected = Rgb::Zero();  // escaped upward, any direction
+    std::vector<Rgb> detector_power_standard_error;  // Monte Carlo, from the spread of batches
+    Rgb reflected = Rgb::Zero();                     // escaped upward, any direction
     double incident = 0;
     int64_t segments = 0;   // ray segments traced (Embree queries)
     int64_t paths_cut = 0;  // paths still carrying weight at the bounce limit
@@ -37,9 +38,8 @@ class TracedSurfaceSample : public GonioSample {
                        int64_t rays) const;
 
   std::string Modelled() const override;
-  std::vector<Rgb> Measure(const Instrument& instrument, const Vec3& wi,
-                           const std::vector<Vec3>& detectors, uint64_t seed,
-                           uint64_t incidence_index) const override;
+  Readings Measure(const Instrument& instrument, const Vec3& wi, const std::vector<Vec3>& detectors,
+                   uint64_t seed, uint64_t incidence_index) const override;
 
   const HeightField& field() const { return field_; }
 

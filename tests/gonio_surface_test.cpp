@@ -158,6 +158,38 @@ TEST(GonioSurfaceTest, RoughConductorConservesEnergyAndIsReciprocal) {
   }
 }
 
+// A traced run's sigma includes its Monte Carlo standard error (from the spread of ray
+// batches): two runs with different seeds differ by amounts of unit variance in those units.
+TEST(GonioSurfaceTest, TracedSigmaCoversTheMonteCarloError) {
+  brdf::testing::ScratchDir dir;
+  const std::string path =
+      dir.Write("rough.json",
+                R"({"heightfield": {"kind": "gaussian", "rms_slope": 0.3, "resolution": 64},
+          "base": "lambert:rho_d=0.8", "rays_per_incidence": 100000})");
+  MeasureOptions options;
+  options.sample = "surface:" + path;
+  options.instrument = IdealInstrument();
+  options.instrument.detector_solid_angle_sr = 0.03;
+  const Schedule schedule =
+      MakeSchedule("hemisphere:theta_i_step=30:theta_o_step=10:phi_o_step=30");
+  options.seed = 1;
+  const Measurement first = Measure(options, schedule);
+  options.seed = 2;
+  const Measurement second = Measure(options, schedule);
+  ASSERT_EQ(first.samples.size(), second.samples.size());
+  ASSERT_GT(first.samples.size(), 250u);
+  double sum_squares = 0;
+  for (size_t k = 0; k < first.samples.size(); ++k) {
+    const double difference = first.samples[k].value[0] - second.samples[k].value[0];
+    const double sigma = std::hypot(first.sigma[k][0], second.sigma[k][0]);
+    ASSERT_GT(sigma, 0);  // the ideal detector adds no noise: this is Monte Carlo error alone
+    sum_squares += difference * difference / (sigma * sigma);
+  }
+  const double variance = sum_squares / first.samples.size();
+  EXPECT_GT(variance, 0.7);
+  EXPECT_LT(variance, 1.35);
+}
+
 TEST(GonioSurfaceTest, TracedRunIsIdenticalWithOneAndTwoThreads) {
   brdf::testing::ScratchDir dir;
   const std::string surface = dir.Write(
