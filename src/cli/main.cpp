@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
       brdf::cli::AddInfoCommand(app),
       brdf::cli::AddConvertCommand(app),
       brdf::cli::AddFitCommand(app),
+      brdf::cli::AddMeasureCommand(app),
   };
 
   try {

@@ -1,0 +1,73 @@
+// The virtual gonioreflectometer's run (DESIGN §5): a sample, a schedule and an instrument in,
+// a calibrated Measurement out (BRDF in sr^-1 with one-sigma noise per reading and metadata
+// saying what was modelled). Deterministic for a seed whatever the thread count: every random
+// number comes from a stream derived from (seed, purpose, index) (rng.h).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/measurement.h"
+#include "gonio/instrument.h"
+#include "gonio/sample.h"
+#include "gonio/schedule.h"
+
+namespace brdf::gonio {
+
+struct MeasureOptions {
+  std::string sample = "model:lambert";  // model:MODEL | surface:FILE.json | sphere:MODEL
+  std::string schedule = "hemisphere";
+  Instrument instrument;
+  std::string instrument_name = "default";  // the file it came from, for the metadata
+  uint64_t seed = 1;
+  // Called with the number of finished readings (or pixels) from any thread; may be empty.
+  std::function<void(int64_t)> advance;
+};
+
+// Builds the sample of `spec` (model: or surface:); sphere: is an acquisition of its own.
+// Throws UsageError / InputError naming the spec or file.
+std::unique_ptr<GonioSample> MakeSample(const std::string& spec, const Instrument& instrument);
+
+// Readings a run will make (for a progress bar's total).
+int64_t CountReadings(const MeasureOptions& options, const Schedule& schedule);
+
+Measurement Measure(const MeasureOptions& options, const Schedule& schedule);
+
+// Converts expected detector readings into calibrated BRDF values the way the instrument does
+// (instrument.h): photon counts with shot and read noise, divided by the reference's counts.
+class Calibration {
+ public:
+  // `reference_reading` is R of the Lambertian reference at the reference geometry, measured
+  // with the same instrument; its `readings` noisy counts are averaged once per run.
+  Calibration(const Instrument& instrument, double reference_reading, uint64_t seed);
+
+  // BRDF value and one-sigma uncertainty for reading R at nominal detector polar cosine
+  // `cos_theta_o`, drawing noise from `rng_index`'s stream.
+  void Calibrate(const Rgb& reading, double cos_theta_o, uint64_t rng_index, Rgb* value,
+                 Rgb* sigma) const;
+  // The same for a ratio to a reference reading taken at the same geometry (the image-based
+  // acquisition images a reference sphere): value = counts/counts_ref · rho/π.
+  void CalibrateRatio(const Rgb& reading, const Rgb& reference_reading, uint64_t rng_index,
+                      Rgb* value, Rgb* sigma) const;
+
+  double reference_counts() const { return reference_counts_; }
+  // d(value)/d(reading) of Calibrate: how an error of the reading becomes an error of the BRDF.
+  double Slope(double cos_theta_o) const;
+
+ private:
+  double ExpectedCounts(double reading) const;
+  // counts / counts_ref and its one-sigma uncertainty; the reference is the run's, or read at
+  // the same geometry when `reference_reading` is given.
+  void Ratio(const Rgb& reading, const Rgb* reference_reading, uint64_t rng_index, Rgb* ratio,
+             Rgb* sigma) const;
+
+  const Instrument& instrument_;
+  uint64_t seed_;
+  double ideal_reference_reading_;  // R_norm = (rho_ref/π) cos(theta_o,ref)
+  double reference_counts_;         // mean of the reference readings
+  double reference_counts_variance_;
+};
+
+}  // namespace brdf::gonio

@@ -1,0 +1,250 @@
+#include "gonio/schedule.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+
+#include "core/angles.h"
+#include "core/errors.h"
+#include "gonio/sampling.h"
+#include "io/merl.h"
+
+namespace brdf::gonio {
+namespace {
+
+[[noreturn]] void Fail(const std::string& spec, const std::string& what) {
+  throw UsageError("schedule '" + spec + "': " + what);
+}
+
+// key=value options after the kind; only `allowed` keys, each a positive number.
+std::map<std::string, double> ParseOptions(const std::string& spec,
+                                           const std::vector<std::string>& allowed) {
+  std::map<std::string, double> options;
+  size_t start = spec.find(':');
+  while (start != std::string::npos) {
+    const size_t end = spec.find(':', start + 1);
+    const std::string part =
+        spec.substr(start + 1, end == std::string::npos ? end : end - start - 1);
+    const size_t equals = part.find('=');
+    if (equals == std::string::npos) Fail(spec, "expected key=value, found '" + part + "'");
+    const std::string key = part.substr(0, equals);
+    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+      std::string list;
+      for (const std::string& name : allowed) list += (list.empty() ? "" : ", ") + name;
+      Fail(spec, "unknown option '" + key + "' (known: " + (list.empty() ? "none" : list) + ")");
+    }
+    const std::string text = part.substr(equals + 1);
+    double value = 0;
+    const auto [end_ptr, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc() || end_ptr != text.data() + text.size() || !(value > 0)) {
+      Fail(spec, "option '" + key + "' needs a positive number, found '" + text + "'");
+    }
+    if (!options.emplace(key, value).second) Fail(spec, "option '" + key + "' given twice");
+    start = end;
+  }
+  return options;
+}
+
+double Option(const std::map<std::string, double>& options, const char* key, double fallback) {
+  const auto found = options.find(key);
+  return found == options.end() ? fallback : found->second;
+}
+
+// Polar angles 0, step, 2 step, ... below 90° (radians).
+std::vector<double> PolarSteps(const std::string& spec, double step_deg) {
+  if (step_deg < 0.1 || step_deg > 45) Fail(spec, "steps must lie in [0.1, 45] degrees");
+  std::vector<double> thetas;
+  for (int k = 0; k * step_deg < 90.0 - 1e-9; ++k) thetas.push_back(DegToRad(k * step_deg));
+  return thetas;
+}
+
+Vec3 Direction(double theta, double phi) { return SphericalDirection(theta, phi); }
+
+Schedule InPlane(const std::string& spec) {
+  const auto options = ParseOptions(spec, {"step"});
+  const std::vector<double> thetas = PolarSteps(spec, Option(options, "step", 5));
+  Schedule schedule;
+  for (double theta_i : thetas) {
+    Incidence incidence{Direction(theta_i, 0), {}};
+    // The plane of incidence: the backward side (phi_o = 0, toward the light) and the forward
+    // side (phi_o = 180°, where the mirror direction lies).
+    for (auto it = thetas.rbegin(); it != thetas.rend(); ++it) {
+      if (*it > 0) incidence.detectors.push_back({Direction(*it, 0), 0});
+    }
+    for (double theta_o : thetas) incidence.detectors.push_back({Direction(theta_o, kPi), 0});
+    schedule.incidences.push_back(std::move(incidence));
+  }
+  return schedule;
+}
+
+Schedule Hemisphere(const std::string& spec) {
+  const auto options = ParseOptions(spec, {"theta_i_step", "theta_o_step", "phi_o_step"});
+  const std::vector<double> thetas_i = PolarSteps(spec, Option(options, "theta_i_step", 5));
+  const std::vector<double> thetas_o = PolarSteps(spec, Option(options, "theta_o_step", 5));
+  const double phi_step = Option(options, "phi_o_step", 5);
+  if (phi_step < 0.1 || phi_step > 180) Fail(spec, "phi_o_step must lie in [0.1, 180] degrees");
+  Schedule schedule;
+  for (double theta_i : thetas_i) {
+    Incidence incidence{Direction(theta_i, 0), {}};
+    for (double theta_o : thetas_o) {
+      if (theta_o == 0) {  // the pole is one direction, whatever phi
+        incidence.detectors.push_back({Direction(0, 0), 0});
+        continue;
+      }
+      for (int k = 0; k * phi_step < 360.0 - 1e-9; ++k) {
+        incidence.detectors.push_back({Direction(theta_o, DegToRad(k * phi_step)), 0});
+      }
+    }
+    schedule.incidences.push_back(std::move(incidence));
+  }
+  return schedule;
+}
+
+Schedule Merl(const std::string& spec) {
+  ParseOptions(spec, {});
+  Schedule schedule;
+  for (int h = 0; h < MerlTable::kThetaHalfBins; ++h) {
+    for (int d = 0; d < MerlTable::kThetaDiffBins; ++d) {
+      for (int p = 0; p < MerlTable::kPhiDiffBins; ++p) {
+        Vec3 wi, wo;
+        FromHalfDiff(MerlTable::CellCentre(h, d, p), &wi, &wo);
+        if (wi.z() <= 0 || wo.z() <= 0) continue;  // cell centre below the horizon
+        schedule.incidences.push_back({wi, {{wo, 0}}});
+      }
+    }
+  }
+  return schedule;
+}
+
+Schedule EqualArea(const std::string& spec) {
+  const auto options = ParseOptions(spec, {"cells", "theta_i_step"});
+  const double cells = Option(options, "cells", 0);
+  if (cells < 1 || cells > 1e6 || cells != std::floor(cells)) {
+    Fail(spec, "needs cells=N, a whole number in [1, 1000000]");
+  }
+  const std::vector<Vec3> centres = EqualAreaCells(static_cast<int>(cells));
+  const double cell_solid_angle = 2 * kPi / cells;
+  Schedule schedule;
+  schedule.has_weight = true;
+  for (double theta_i : PolarSteps(spec, Option(options, "theta_i_step", 5))) {
+    Incidence incidence{Direction(theta_i, 0), {}};
+    for (const Vec3& wo : centres) incidence.detectors.push_back({wo, cell_solid_angle});
+    schedule.incidences.push_back(std::move(incidence));
+  }
+  return schedule;
+}
+
+// Offsets (degrees) from the mirror direction of the rings added by `adaptive`: geometric, so
+// that a lobe of any width from ~1° to tens of degrees is sampled by a few rings.
+constexpr double kAdaptiveRingsDeg[] = {0.5, 1, 2, 4, 8, 16};
+constexpr int kAdaptiveRingPoints = 12;
+
+Schedule Adaptive(const std::string& spec) {
+  const auto options = ParseOptions(spec, {"theta_i_step", "base_step"});
+  const std::vector<double> thetas_i = PolarSteps(spec, Option(options, "theta_i_step", 5));
+  const double base_step = Option(options, "base_step", 10);
+  Schedule schedule;
+  const std::vector<double> thetas_o = PolarSteps(spec, base_step);
+  for (double theta_i : thetas_i) {
+    Incidence incidence{Direction(theta_i, 0), {}};
+    for (double theta_o : thetas_o) {
+      const int azimuths = theta_o == 0 ? 1 : static_cast<int>(std::ceil(360.0 / base_step - 1e-9));
+      for (int k = 0; k < azimuths; ++k) {
+        incidence.detectors.push_back({Direction(theta_o, 2 * kPi * k / azimuths), 0});
+      }
+    }
+    const Vec3 mirror = MirrorDirection(incidence.wi);
+    incidence.detectors.push_back({mirror, 0});
+    const Frame frame(mirror);
+    for (double ring_deg : kAdaptiveRingsDeg) {
+      const double ring = DegToRad(ring_deg);
+      for (int k = 0; k < kAdaptiveRingPoints; ++k) {
+        const double phi = 2 * kPi * k / kAdaptiveRingPoints;
+        const Vec3 wo = frame.FromLocal(
+            Vec3(std::sin(ring) * std::cos(phi), std::sin(ring) * std::sin(phi), std::cos(ring)));
+        if (wo.z() > std::cos(DegToRad(89.5))) incidence.detectors.push_back({wo, 0});
+      }
+    }
+    schedule.incidences.push_back(std::move(incidence));
+  }
+  return schedule;
+}
+
+}  // namespace
+
+size_t Schedule::CountGeometries() const {
+  size_t count = 0;
+  for (const Incidence& incidence : incidences) count += incidence.detectors.size();
+  return count;
+}
+
+std::vector<double> Schedule::IncidenceThetas() const {
+  std::vector<double> thetas;
+  for (const Incidence& incidence : incidences) thetas.push_back(Theta(incidence.wi));
+  std::sort(thetas.begin(), thetas.end());
+  thetas.erase(std::unique(thetas.begin(), thetas.end(),
+                           [](double a, double b) { return std::abs(a - b) < 1e-9; }),
+               thetas.end());
+  return thetas;
+}
+
+std::vector<Vec3> EqualAreaCells(int cells) {
+  // Every cell spans 2π/N sr; a cap of that solid angle has 1 − cos(theta) = 1/N. Rings then
+  // get a height of about one cell width (√(2π/N) radians) and as many cells as their area
+  // holds; boundaries are then moved so each ring holds exactly its cells' area
+  // (1 − cos(theta_k) = cumulative cells / N), which makes every cell's solid angle exact.
+  std::vector<Vec3> centres;
+  if (cells == 1) return {Vec3(0, 0, 1)};
+  const double cell_width = std::sqrt(2 * kPi / cells);
+  const double cap_theta = std::acos(1.0 - 1.0 / cells);
+  const int rings = std::max(1, static_cast<int>(std::lround((kPi / 2 - cap_theta) / cell_width)));
+  // Cumulative counts rounded at the ideal (equally spaced) ring boundaries; the differences
+  // sum to exactly N cells.
+  std::vector<int> ring_cells(rings);
+  int previous = 1;
+  for (int k = 0; k < rings; ++k) {
+    const double upper = cap_theta + (kPi / 2 - cap_theta) * (k + 1) / rings;
+    const int cumulative =
+        k + 1 == rings
+            ? cells
+            : std::max(previous, static_cast<int>(std::lround((1.0 - std::cos(upper)) * cells)));
+    ring_cells[k] = cumulative - previous;
+    previous = cumulative;
+  }
+  centres.push_back(Vec3(0, 0, 1));
+  int cumulative = 1;
+  for (int k = 0; k < rings; ++k) {
+    const double cos_lower = 1.0 - static_cast<double>(cumulative) / cells;
+    cumulative += ring_cells[k];
+    const double cos_upper = std::max(0.0, 1.0 - static_cast<double>(cumulative) / cells);
+    const double theta = std::acos(0.5 * (cos_lower + cos_upper));  // mid-area polar angle
+    for (int j = 0; j < ring_cells[k]; ++j) {                       // an empty ring adds nothing
+      centres.push_back(SphericalDirection(theta, 2 * kPi * (j + 0.5) / ring_cells[k]));
+    }
+  }
+  return centres;
+}
+
+Schedule MakeSchedule(const std::string& spec) {
+  const std::string kind = spec.substr(0, spec.find(':'));
+  Schedule schedule;
+  if (kind == "inplane") {
+    schedule = InPlane(spec);
+  } else if (kind == "hemisphere") {
+    schedule = Hemisphere(spec);
+  } else if (kind == "merl") {
+    schedule = Merl(spec);
+  } else if (kind == "equal-area") {
+    schedule = EqualArea(spec);
+  } else if (kind == "adaptive") {
+    schedule = Adaptive(spec);
+  } else {
+    Fail(spec, "unknown kind (known: inplane, hemisphere, merl, equal-area, adaptive)");
+  }
+  schedule.spec = spec;
+  schedule.kind = kind;
+  return schedule;
+}
+
+}  // namespace brdf::gonio

@@ -1,0 +1,303 @@
+#include "gonio/traced_surface.h"
+
+#include <embree3/rtcore.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/errors.h"
+#include "core/text.h"
+#include "gonio/rng.h"
+#include "gonio/sampling.h"
+
+namespace brdf::gonio {
+namespace {
+
+constexpr int kRaysPerBatch = 4096;
+// Lateral wraps before a path is abandoned: only a ray almost parallel to the mean surface
+// crosses this many tiles, and its weight is lost either way.
+constexpr int kMaxWraps = 256;
+// Russian roulette starts after this many bounces (Arvo & Kirk 1990).
+constexpr int kRouletteAfter = 3;
+
+// Detector cones indexed by 1° cells of (theta, phi) so that an escaping ray is compared with
+// the few detectors that can contain it, not with all of them.
+class DetectorLookup {
+ public:
+  DetectorLookup(const std::vector<Vec3>& detectors, double cos_half_angle)
+      : detectors_(detectors), cos_half_angle_(cos_half_angle), cells_(kThetaCells * kPhiCells) {
+    const double radius = std::acos(cos_half_angle);
+    for (size_t k = 0; k < detectors.size(); ++k) {
+      const double theta = Theta(detectors[k]), phi = Phi(detectors[k]);
+      const int theta_low = std::max(0, CellTheta(theta - radius) - 1);
+      const int theta_high = std::min(kThetaCells - 1, CellTheta(theta + radius) + 1);
+      const double sin_low = std::sin(std::max(theta - radius, 0.0));
+      const bool all_phi = theta - radius <= DegToRad(1) || radius / sin_low >= kPi;
+      const double phi_radius =
+          all_phi ? kPi : std::asin(std::min(1.0, std::sin(radius) / sin_low));
+      const int phi_span = static_cast<int>(std::ceil(RadToDeg(phi_radius))) + 1;
+      const int first = all_phi ? 0 : CellPhi(phi) - phi_span;
+      const int last = all_phi ? kPhiCells - 1 : CellPhi(phi) + phi_span;
+      for (int t = theta_low; t <= theta_high; ++t) {
+        for (int p = first; p <= last; ++p) {
+          cells_[t * kPhiCells + ((p % kPhiCells) + kPhiCells) % kPhiCells].push_back(int(k));
+        }
+      }
+    }
+    for (auto& cell : cells_) {  // a detector may have been added twice through phi wrap
+      std::sort(cell.begin(), cell.end());
+      cell.erase(std::unique(cell.begin(), cell.end()), cell.end());
+    }
+  }
+
+  template <typename Visit>
+  void ForEachContaining(const Vec3& w, Visit&& visit) const {
+    const std::vector<int>& cell = cells_[CellTheta(Theta(w)) * kPhiCells + CellPhi(Phi(w))];
+    for (int k : cell) {
+      if (w.dot(detectors_[k]) >= cos_half_angle_) visit(k);
+    }
+  }
+
+ private:
+  static constexpr int kThetaCells = 90, kPhiCells = 360;
+  static int CellTheta(double theta) {
+    return std::clamp(static_cast<int>(std::floor(RadToDeg(theta))), 0, kThetaCells - 1);
+  }
+  static int CellPhi(double phi) {
+    const int cell = static_cast<int>(std::floor(RadToDeg(phi)));
+    return ((cell % kPhiCells) + kPhiCells) % kPhiCells;
+  }
+
+  const std::vector<Vec3>& detectors_;
+  double cos_half_angle_;
+  std::vector<std::vector<int>> cells_;
+};
+
+}  // namespace
+
+// The Embree device and scene of one height field (Embree 3 API).
+class EmbreeHeightField {
+ public:
+  explicit EmbreeHeightField(const HeightField& field) : size_(field.resolution) {
+    device_ = rtcNewDevice(nullptr);
+    if (device_ == nullptr) throw ComputeError("Embree: cannot create a device");
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    const int n = field.resolution;
+    RTCGeometry mesh = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // (n+1)² vertices: the last row and column repeat the first, so the tile is seamless.
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(mesh, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), size_t(n + 1) * (n + 1)));
+    auto* triangles = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        mesh, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), size_t(2) * n * n));
+    if (vertices == nullptr || triangles == nullptr) throw ComputeError("Embree: out of memory");
+    for (int y = 0; y <= n; ++y) {
+      for (int x = 0; x <= n; ++x) {
+        float* v = vertices + 3 * (size_t(y) * (n + 1) + x);
+        v[0] = float(x), v[1] = float(y), v[2] = field.At(x, y);
+      }
+    }
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
+        const unsigned a = y * (n + 1) + x, b = a + 1, c = a + (n + 1), d = c + 1;
+        unsigned* t = triangles + 6 * (size_t(y) * n + x);
+        t[0] = a, t[1] = b, t[2] = d;  // counter-clockwise seen from above: normals point up
+        t[3] = a, t[4] = d, t[5] = c;
+      }
+    }
+    rtcCommitGeometry(mesh);
+    rtcAttachGeometry(scene_, mesh);
+    rtcReleaseGeometry(mesh);
+    rtcCommitScene(scene_);
+    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE)
+      throw ComputeError("Embree: scene build failed");
+    top_ = field.MaxHeight() + 1e-3f;
+    bottom_ = field.MinHeight() - 1.0f;
+  }
+  ~EmbreeHeightField() {
+    rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+  }
+  EmbreeHeightField(const EmbreeHeightField&) = delete;
+  EmbreeHeightField& operator=(const EmbreeHeightField&) = delete;
+
+  double top() const { return top_; }
+  double size() const { return size_; }
+
+  // Follows a ray through the periodic tiling. Returns true with the hit point and the unit
+  // geometric normal facing the ray; false when it escaped upward (*escaped) or was lost.
+  bool Intersect(Vec3* origin, const Vec3& direction, Vec3* normal, bool* escaped,
+                 int64_t* segments) const {
+    *escaped = false;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int wrap = 0; wrap < kMaxWraps; ++wrap) {
+      const Vec3& o = *origin;
+      const double t_x = direction.x() > 0   ? (size_ - o.x()) / direction.x()
+                         : direction.x() < 0 ? -o.x() / direction.x()
+                                             : inf;
+      const double t_y = direction.y() > 0   ? (size_ - o.y()) / direction.y()
+                         : direction.y() < 0 ? -o.y() / direction.y()
+                                             : inf;
+      const double t_top = direction.z() > 0 ? (top_ - o.z()) / direction.z() : inf;
+      const double t_side = std::min(t_x, t_y);
+      RTCRayHit query;
+      query.ray.org_x = float(o.x()), query.ray.org_y = float(o.y()),
+      query.ray.org_z = float(o.z());
+      query.ray.dir_x = float(direction.x()), query.ray.dir_y = float(direction.y());
+      query.ray.dir_z = float(direction.z());
+      query.ray.tnear = 0.0f;
+      query.ray.tfar = float(std::min(t_side, t_top));
+      query.ray.mask = 0xffffffffu;
+      query.ray.flags = 0;
+      query.ray.time = 0.0f;
+      query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene_, &context, &query);
+      ++*segments;
+      if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+        *origin = o + double(query.ray.tfar) * direction;
+        *normal = Vec3(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z).normalized();
+        if (normal->dot(direction) > 0) *normal = -*normal;
+        return true;
+      }
+      if (t_top <= t_side) {
+        *escaped = true;
+        return false;
+      }
+      Vec3 next = o + t_side * direction;
+      if (next.z() < bottom_) return false;  // slipped through a seam: lost
+      if (t_x <= t_side) next.x() = direction.x() > 0 ? 0.0 : size_;
+      if (t_y <= t_side) next.y() = direction.y() > 0 ? 0.0 : size_;
+      *origin = next;
+    }
+    return false;
+  }
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  double size_;
+  double top_ = 0, bottom_ = 0;
+};
+
+TracedSurfaceSample::TracedSurfaceSample(HeightField field, FacetMaterial material,
+                                         const SurfaceSpec& spec)
+    : field_(std::move(field)),
+      material_(std::move(material)),
+      spec_(spec),
+      scene_(std::make_unique<EmbreeHeightField>(field_)) {}
+
+TracedSurfaceSample::~TracedSurfaceSample() = default;
+
+std::string TracedSurfaceSample::Modelled() const {
+  return "height field " + spec_.heightfield.kind + " " + std::to_string(field_.resolution) + "x" +
+         std::to_string(field_.resolution) + " (rms slope " + FormatNumber(field_.RmsSlope()) +
+         ") of " + material_.ToString() + " facets, ray traced with Embree (BVH of " +
+         std::to_string(2 * int64_t(field_.resolution) * field_.resolution) +
+         " triangles), up to " + std::to_string(spec_.bounces) +
+         " bounces with Russian roulette, " + std::to_string(spec_.rays_per_incidence) +
+         " rays per incidence; masking, shadowing and interreflection traced; sigma includes "
+         "the Monte Carlo standard error";
+}
+
+TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
+    const Instrument& instrument, const Vec3& wi, const std::vector<Vec3>& detectors, uint64_t seed,
+    uint64_t incidence_index, int64_t rays) const {
+  const DetectorLookup lookup(detectors, instrument.DetectorCosHalfAngle());
+  const int64_t batches = (rays + kRaysPerBatch - 1) / kRaysPerBatch;
+  std::vector<Trace> partial(batches);
+  const double tile = scene_->size();
+  // One stream per (incidence, batch): the batch, not the thread, owns its random numbers.
+  const uint64_t incidence_seed = Rng(seed, Stream::kRayBatch, incidence_index).NextU64();
+  tbb::parallel_for(int64_t{0}, batches, [&](int64_t b) {
+    Trace& trace = partial[b];
+    trace.detector_power.assign(detectors.size(), Rgb::Zero());
+    Rng rng(incidence_seed, Stream::kRayBatch, static_cast<uint64_t>(b));
+    const int64_t count = std::min<int64_t>(kRaysPerBatch, rays - b * kRaysPerBatch);
+    for (int64_t r = 0; r < count; ++r) {
+      double weight = 0;
+      const double u1 = rng.Uniform(), u2 = rng.Uniform();
+      const Vec3 wi_source = instrument.SourceDirection(wi, u1, u2, &weight);
+      trace.incident += weight;
+      if (weight <= 0) continue;
+      Vec3 origin(rng.Uniform() * tile, rng.Uniform() * tile, scene_->top());
+      Vec3 direction = -wi_source;
+      Rgb throughput = Rgb::Constant(weight);
+      for (int bounce = 0;; ++bounce) {
+        Vec3 normal;
+        bool escaped = false;
+        if (!scene_->Intersect(&origin, direction, &normal, &escaped, &trace.segments)) {
+          if (escaped) {
+            trace.reflected += throughput;
+            lookup.ForEachContaining(direction,
+                                     [&](int k) { trace.detector_power[k] += throughput; });
+          }
+          break;
+        }
+        if (bounce == spec_.bounces) {
+          ++trace.paths_cut;
+          break;
+        }
+        const Frame facet(normal);
+        const Vec3 wo_local =
+            material_.Scatter(facet.ToLocal(-direction), rng.Uniform(), rng.Uniform(), &throughput);
+        if (wo_local.z() <= 0) break;
+        direction = facet.FromLocal(wo_local).normalized();
+        origin += 1e-4 * normal;  // step off the facet so the next ray does not hit it again
+        if (bounce + 1 >= kRouletteAfter) {
+          const double survival = std::min(1.0, throughput.maxCoeff() / weight);
+          if (survival <= 0 || rng.Uniform() >= survival) break;
+          throughput /= survival;
+        }
+      }
+    }
+  });
+  // Sum in batch order: the result does not depend on which thread ran which batch.
+  Trace total;
+  total.detector_power.assign(detectors.size(), Rgb::Zero());
+  for (const Trace& trace : partial) {
+    for (size_t k = 0; k < detectors.size(); ++k)
+      total.detector_power[k] += trace.detector_power[k];
+    total.reflected += trace.reflected;
+    total.incident += trace.incident;
+    total.segments += trace.segments;
+    total.paths_cut += trace.paths_cut;
+  }
+  // Monte Carlo standard error of each detector's power, from the spread of the batches'
+  // fractions x_b = power_b / incident_b about the pooled fraction: the batches are independent,
+  // so the pooled estimate's variance is about var(x_b) / B (in units of total incident power).
+  total.detector_power_standard_error.assign(detectors.size(), Rgb::Zero());
+  if (batches > 1) {
+    for (size_t k = 0; k < detectors.size(); ++k) {
+      const Rgb pooled = total.detector_power[k] / total.incident;
+      Rgb sum_squares = Rgb::Zero();
+      for (const Trace& trace : partial) {
+        if (trace.incident <= 0) continue;
+        sum_squares += (trace.detector_power[k] / trace.incident - pooled).square();
+      }
+      total.detector_power_standard_error[k] =
+          (sum_squares / double(batches - 1) / double(batches)).sqrt() * total.incident;
+    }
+  }
+  return total;
+}
+
+Readings TracedSurfaceSample::Measure(const Instrument& instrument, const Vec3& wi,
+                                      const std::vector<Vec3>& detectors, uint64_t seed,
+                                      uint64_t incidence_index) const {
+  const Trace trace =
+      TraceIncidence(instrument, wi, detectors, seed, incidence_index, spec_.rays_per_incidence);
+  Readings readings;
+  const double scale = 1.0 / (trace.incident * instrument.detector_solid_angle_sr);
+  for (size_t k = 0; k < detectors.size(); ++k) {
+    readings.value.push_back(trace.detector_power[k] * scale);
+    readings.standard_error.push_back(trace.detector_power_standard_error[k] * scale);
+  }
+  return readings;
+}
+
+}  // namespace brdf::gonio
