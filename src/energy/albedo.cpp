@@ -105,6 +105,7 @@ void AlbedoOptions::Validate() const {
     throw UsageError("--samples must be at least 2, got " + std::to_string(samples));
   }
   quadrature.Validate();
+  if (measured_max_intervals < 1) throw UsageError("measured data need at least one interval");
 }
 
 std::vector<double> AlbedoOptions::ThetaDegrees() const {
@@ -127,7 +128,10 @@ std::string AlbedoCurve::Verdict() const {
                                            " (" + kChannelNames[worst] + ", theta " +
                                            Fixed(theta_deg_at_max[worst], 1) +
                                            " deg) exceeds 1 by " + Fixed(amount, 6);
-  if (amount <= 2.0 * error_at_max[worst]) {
+  if (coverage_at_max < kCoverageWarning) {
+    verdict += "; the maximum lies where the data cover only " + Fixed(100 * coverage_at_max, 1) +
+               "% of the hemisphere, so it is not decisive";
+  } else if (amount <= 2.0 * error_at_max[worst]) {
     verdict += "; within twice the error estimate (" + Fixed(error_at_max[worst], 6) +
                ") of 1, so not decisive";
   }
@@ -191,6 +195,13 @@ void FinishAlbedoCurve(AlbedoCurve* curve) {
     curve->evaluations += point.estimate.evaluations;
   }
   if (curve->points.empty()) curve->max_albedo = Rgb::Zero();
+  int worst = 0;
+  curve->max_albedo.maxCoeff(&worst);
+  for (const AlbedoPoint& point : curve->points) {
+    if (point.theta_deg == curve->theta_deg_at_max[worst]) {
+      curve->coverage_at_max = point.estimate.coverage;
+    }
+  }
   if (first_low_coverage >= 0) {
     curve->warnings.push_back(
         "the data cover less than " + Fixed(100 * kCoverageWarning, 0) +
@@ -235,9 +246,11 @@ AlbedoEstimate MeasuredDirectionalAlbedo(const MeasuredBrdf& measured, double th
                                          const AlbedoOptions& options, uint64_t stream) {
   const Vec3 wo = OutgoingAt(theta_o);
   switch (options.method) {
-    case AlbedoMethod::kQuadrature:
-      return IntegrateInLobeCoordinates(measured.brdf, wo, measured.coordinates,
-                                        options.quadrature);
+    case AlbedoMethod::kQuadrature: {
+      LobeQuadratureOptions capped = options.quadrature;
+      capped.max_intervals = std::min(capped.max_intervals, options.measured_max_intervals);
+      return IntegrateInLobeCoordinates(measured.brdf, wo, measured.coordinates, capped);
+    }
     case AlbedoMethod::kMonteCarlo: {
       RandomStream random(options.seed, stream);
       return EstimateAlbedoCosine(measured.brdf, wo, options.samples, &random);

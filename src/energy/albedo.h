@@ -35,6 +35,9 @@ struct AlbedoOptions {
   int64_t samples = 65536;      // per angle, for the Monte Carlo methods
   uint64_t seed = 1;            // Monte Carlo: angle k always uses stream (seed, k)
   LobeQuadratureOptions quadrature;
+  // Interpolated data are not smooth (nearest cells, inverse-distance blends): refining the
+  // quadrature past the data's own resolution buys nothing, so measured data stop here.
+  int measured_max_intervals = 8;
 
   void Validate() const;  // throws UsageError naming the bad option
   std::vector<double> ThetaDegrees() const;
@@ -57,6 +60,7 @@ struct AlbedoCurve {
   Rgb error_at_max = Rgb::Zero();
   std::array<double, 3> theta_deg_at_max = {0, 0, 0};
   double min_coverage = 1.0;
+  double coverage_at_max = 1.0;  // at the angle of the largest channel's maximum
   int64_t evaluations = 0;
 
   // a <= 1 in every channel at every angle (DESIGN §1).
