@@ -241,7 +241,10 @@ AlbedoEstimate IntegrateInLobeCoordinates(const BrdfFunction& brdf, const Vec3& 
     worst_first.push(interval);
   };
   for (size_t k = 0; k + 1 < breaks.size(); ++k) {
-    if (breaks[k + 1] > breaks[k]) add(breaks[k], breaks[k + 1]);
+    if (!(breaks[k + 1] > breaks[k])) continue;
+    const double middle = 0.5 * (breaks[k] + breaks[k + 1]);
+    add(breaks[k], middle);
+    add(middle, breaks[k + 1]);
   }
   int intervals = static_cast<int>(worst_first.size());
   while (intervals < options.max_intervals && !worst_first.empty() &&
