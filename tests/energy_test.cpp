@@ -109,6 +109,18 @@ TEST(Albedo, LectureFactorIsCaughtAsNotConserving) {
   EXPECT_NE(curve.Summary().find("NOT conserving"), std::string::npos);
 }
 
+TEST(Albedo, MaterialsExactlyAtTheBoundAreConserving) {
+  // Albedo exactly 1 at normal incidence in theory: rounding must not make them fail.
+  for (const char* model : {"lambert:rho_d=1", "phong:rho_d=0.5:rho_s=0.5:n=100",
+                            "blinn-phong-exact:rho_d=0.3:rho_s=0.7:m=1000"}) {
+    const AlbedoCurve curve = ModelAlbedoCurve(ParseModel(model), AlbedoOptions{});
+    EXPECT_TRUE(curve.conserving()) << model << ": " << curve.Verdict();
+    EXPECT_NEAR(curve.max_albedo.maxCoeff(), 1.0, 1e-5) << model;
+  }
+  // Just above the bound, and clearly so, is not.
+  EXPECT_FALSE(ModelAlbedoCurve(ParseModel("phong:rho_d=0.5:rho_s=0.501:n=100"), {}).conserving());
+}
+
 TEST(Albedo, MethodsAgreeWithinTheirErrorEstimates) {
   for (const char* model :
        {"phong:rho_d=0.3:rho_s=0.6:n=100", "blinn-phong:rho_d=0.2:rho_s=0.7:m=1000",

@@ -67,6 +67,13 @@ std::string Fixed(double value, int digits) {
   return text.str();
 }
 
+// Four significant digits: amounts from 1e-7 to 1e3 read alike.
+std::string Significant(double value) {
+  std::ostringstream text;
+  text << std::setprecision(4) << value;
+  return text.str();
+}
+
 std::string Rgb3(const Rgb& value, int digits) {
   return Fixed(value[0], digits) + " " + Fixed(value[1], digits) + " " + Fixed(value[2], digits);
 }
@@ -114,7 +121,12 @@ std::vector<double> AlbedoOptions::ThetaDegrees() const {
   return thetas;
 }
 
-bool AlbedoCurve::conserving() const { return (max_albedo <= 1.0).all(); }
+bool AlbedoCurve::conserving() const {
+  // Only an excess larger than twice its error estimate counts against a material: a material
+  // exactly at the bound (lambert:rho_d=1, phong with rho_d + rho_s = 1) must not flip with
+  // rounding.
+  return (max_albedo - 1.0 <= 2.0 * error_at_max).all();
+}
 
 double AlbedoCurve::excess() const { return max_albedo.maxCoeff() - 1.0; }
 
@@ -122,18 +134,24 @@ std::string AlbedoCurve::Verdict() const {
   int worst = 0;
   max_albedo.maxCoeff(&worst);
   const double amount = std::abs(excess());
-  std::string verdict = conserving() ? "conserving: max albedo " + Fixed(max_albedo[worst], 6) +
-                                           " <= 1 (margin " + Fixed(amount, 6) + ")"
-                                     : "NOT conserving: max albedo " + Fixed(max_albedo[worst], 6) +
-                                           " (" + kChannelNames[worst] + ", theta " +
-                                           Fixed(theta_deg_at_max[worst], 1) +
-                                           " deg) exceeds 1 by " + Fixed(amount, 6);
+  const std::string max_text = "max albedo " + Fixed(max_albedo[worst], 6);
+  const std::string error_text = Significant(error_at_max[worst]);
+  std::string verdict;
+  if (!conserving()) {
+    verdict = "NOT conserving: " + max_text + " (" + kChannelNames[worst] + ", theta " +
+              Fixed(theta_deg_at_max[worst], 1) + " deg) exceeds 1 by " + Significant(amount);
+  } else if (excess() > 0.0) {
+    verdict = "conserving at the bound: " + max_text + " exceeds 1 by " + Significant(amount) +
+              ", less than twice its error estimate (" + error_text + ")";
+  } else {
+    verdict = "conserving: " + max_text + " <= 1 (margin " + Significant(amount) + ")";
+    if (amount <= 2.0 * error_at_max[worst]) {
+      verdict += ", at the bound within twice the error estimate (" + error_text + ")";
+    }
+  }
   if (coverage_at_max < kCoverageWarning) {
     verdict += "; the maximum lies where the data cover only " + Fixed(100 * coverage_at_max, 1) +
                "% of the hemisphere, so it is not decisive";
-  } else if (amount <= 2.0 * error_at_max[worst]) {
-    verdict += "; within twice the error estimate (" + Fixed(error_at_max[worst], 6) +
-               ") of 1, so not decisive";
   }
   return verdict;
 }

@@ -63,7 +63,8 @@ struct AlbedoCurve {
   double coverage_at_max = 1.0;  // at the angle of the largest channel's maximum
   int64_t evaluations = 0;
 
-  // a <= 1 in every channel at every angle (DESIGN §1).
+  // a <= 1 in every channel at every angle (DESIGN §1), up to twice the error estimate: only a
+  // significant excess makes a material non-conserving.
   bool conserving() const;
   // Largest max_albedo - 1 over the channels: > 0 is the excess, < 0 the margin.
   double excess() const;
