@@ -104,10 +104,9 @@ void RunGrid(benchmark::State& state, const std::string& model_text, int theta_c
 
 void RegisterAll() {
   for (const std::string& model : TargetModels()) {
-    benchmark::RegisterBenchmark(("BM_Target/" + model).c_str(),
-                                 [model](benchmark::State& state) {
-                                   RunCurve(state, model, AlbedoOptions{});
-                                 })
+    benchmark::RegisterBenchmark(
+        ("BM_Target/" + model).c_str(),
+        [model](benchmark::State& state) { RunCurve(state, model, AlbedoOptions{}); })
         ->Unit(benchmark::kMillisecond)
         ->MeasureProcessCPUTime()
         ->UseRealTime();
@@ -117,10 +116,9 @@ void RegisterAll() {
       options.quadrature.max_intervals = 1000;
       char budget[32];
       std::snprintf(budget, sizeof(budget), "%g", tolerance);
-      benchmark::RegisterBenchmark(("BM_Sweep/" + model + "/quadrature/" + budget).c_str(),
-                                   [model, options](benchmark::State& state) {
-                                     RunCurve(state, model, options);
-                                   })
+      benchmark::RegisterBenchmark(
+          ("BM_Sweep/" + model + "/quadrature/" + budget).c_str(),
+          [model, options](benchmark::State& state) { RunCurve(state, model, options); })
           ->Unit(benchmark::kMillisecond)
           ->MeasureProcessCPUTime()
           ->UseRealTime();
@@ -130,12 +128,10 @@ void RegisterAll() {
         AlbedoOptions options;
         options.method = method;
         options.samples = samples;
-        benchmark::RegisterBenchmark(("BM_Sweep/" + model + "/" + AlbedoMethodName(method) + "/" +
-                                      std::to_string(samples))
-                                         .c_str(),
-                                     [model, options](benchmark::State& state) {
-                                       RunCurve(state, model, options);
-                                     })
+        benchmark::RegisterBenchmark(
+            ("BM_Sweep/" + model + "/" + AlbedoMethodName(method) + "/" + std::to_string(samples))
+                .c_str(),
+            [model, options](benchmark::State& state) { RunCurve(state, model, options); })
             ->Unit(benchmark::kMillisecond)
             ->MeasureProcessCPUTime()
             ->UseRealTime();
