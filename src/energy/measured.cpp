@@ -22,7 +22,7 @@ constexpr double kCoverageSpacings = 2.0;
 // so that wo has azimuth 0, mirrored so that wi has y >= 0 (isotropic BRDFs are symmetric about
 // the plane of incidence). Distance is the chordal distance of both directions together.
 struct CanonicalPair {
-  double theta_o = 0;  // polar angle of wo: the sort key
+  double theta_o = 0, theta_i = 0;  // polar angles: the search index's keys
   Vec3 wi, wo;
 };
 
@@ -33,6 +33,7 @@ CanonicalPair Canonical(const Vec3& wi, const Vec3& wo) {
   pair.wo = Vec3(c * wo.x() - s * wo.y(), 0.0, wo.z());
   pair.wi = Vec3(c * wi.x() - s * wi.y(), std::abs(s * wi.x() + c * wi.y()), wi.z());
   pair.theta_o = Theta(pair.wo);
+  pair.theta_i = Theta(pair.wi);
   return pair;
 }
 
@@ -53,8 +54,10 @@ class ScatteredInterpolator {
     if (points_.empty()) {
       throw InputError(measurement.source, "no usable sample (all missing or below the horizon)");
     }
-    std::sort(points_.begin(), points_.end(),
-              [](const Point& a, const Point& b) { return a.pair.theta_o < b.pair.theta_o; });
+    for (size_t index = 0; index < points_.size(); ++index) {
+      const CanonicalPair& pair = points_[index].pair;
+      cells_[CellIndex(BinOf(pair.theta_o), BinOf(pair.theta_i))].push_back(index);
+    }
     // Typical spacing: the median over samples of the distance to the nearest other sample.
     std::vector<double> nearest;
     nearest.reserve(points_.size());
@@ -108,10 +111,26 @@ class ScatteredInterpolator {
     double squared_distance = std::numeric_limits<double>::infinity();
   };
 
-  // The k nearest points, nearest first. Points are sorted by theta_o, and two canonical wo lie
-  // on one great circle, so |wo - wo'| = 2 sin(|theta_o - theta_o'| / 2) bounds the distance
-  // from below: the search walks outward from the query's theta_o and stops when that bound
-  // exceeds the k-th best distance.
+  // The search index: cells of kBinWidth x kBinWidth in (theta_o, theta_i). For unit vectors
+  // |a - b| >= 2 sin(|theta_a - theta_b| / 2), so a cell's gap in both polar angles bounds the
+  // distance of everything in it from below.
+  static constexpr int kBins = 45;
+  static constexpr double kBinWidth = 0.5 * kPi / kBins;
+  static int BinOf(double theta) {
+    return std::clamp(static_cast<int>(theta / kBinWidth), 0, kBins - 1);
+  }
+  static int CellIndex(int bin_o, int bin_i) { return bin_o * kBins + bin_i; }
+  static double SquaredChord(double angle) {
+    const double chord = 2.0 * std::sin(0.5 * std::max(0.0, angle));
+    return chord * chord;
+  }
+  // Distance from theta to the bin's interval of polar angles.
+  static double GapToBin(double theta, int bin) {
+    return std::max({0.0, bin * kBinWidth - theta, theta - (bin + 1) * kBinWidth});
+  }
+
+  // The k nearest points, nearest first: cells visited in square rings around the query's
+  // cell, until the ring's lower bound exceeds the k-th best distance.
   std::array<Neighbour, kNeighbours> Nearest(const CanonicalPair& query) const {
     std::array<Neighbour, kNeighbours> best;
     auto consider = [&](int64_t index) {
@@ -124,32 +143,28 @@ class ScatteredInterpolator {
       }
       best[slot] = {index, squared_distance};
     };
-    auto lower_bound = [&](int64_t index) {
-      const double chord = 2.0 * std::sin(0.5 * (points_[index].pair.theta_o - query.theta_o));
-      return chord * chord;
-    };
-    const int64_t count = static_cast<int64_t>(points_.size());
-    int64_t above = std::lower_bound(points_.begin(), points_.end(), query.theta_o,
-                                     [](const Point& point, double theta_o) {
-                                       return point.pair.theta_o < theta_o;
-                                     }) -
-                    points_.begin();
-    int64_t below = above - 1;
-    while (below >= 0 || above < count) {
-      const double bound_below = below >= 0 ? lower_bound(below) : kInfinity;
-      const double bound_above = above < count ? lower_bound(above) : kInfinity;
-      if (std::min(bound_below, bound_above) >= best[kNeighbours - 1].squared_distance) break;
-      if (bound_below <= bound_above) {
-        consider(below--);
-      } else {
-        consider(above++);
+    const int query_o = BinOf(query.theta_o), query_i = BinOf(query.theta_i);
+    for (int ring = 0; ring < kBins; ++ring) {
+      // Every cell of this ring is at least ring - 1 whole bins away in one of the angles.
+      if (SquaredChord((ring - 1) * kBinWidth) >= best[kNeighbours - 1].squared_distance) break;
+      for (int bin_o = query_o - ring; bin_o <= query_o + ring; ++bin_o) {
+        if (bin_o < 0 || bin_o >= kBins) continue;
+        const bool edge_row = bin_o == query_o - ring || bin_o == query_o + ring;
+        const int step = edge_row ? 1 : 2 * ring;  // inner rows: only the two end cells
+        for (int bin_i = query_i - ring; bin_i <= query_i + ring; bin_i += std::max(step, 1)) {
+          if (bin_i < 0 || bin_i >= kBins) continue;
+          const double bound = SquaredChord(GapToBin(query.theta_o, bin_o)) +
+                               SquaredChord(GapToBin(query.theta_i, bin_i));
+          if (bound >= best[kNeighbours - 1].squared_distance) continue;
+          for (int64_t index : cells_[CellIndex(bin_o, bin_i)]) consider(index);
+        }
       }
     }
     return best;
   }
 
-  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
   std::vector<Point> points_;
+  std::vector<std::vector<int64_t>> cells_ = std::vector<std::vector<int64_t>>(kBins * kBins);
   double spacing_ = 0, coverage_radius_ = 0;
 };
 
