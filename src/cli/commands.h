@@ -18,5 +18,6 @@ Command AddConvertCommand(CLI::App& parent);
 Command AddFitCommand(CLI::App& parent);
 Command AddDemoCommand(CLI::App& parent);
 Command AddMeasureCommand(CLI::App& parent);
+Command AddEnergyCommand(CLI::App& parent);
 
 }  // namespace brdf::cli

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
       brdf::cli::AddConvertCommand(app),
       brdf::cli::AddFitCommand(app),
       brdf::cli::AddMeasureCommand(app),
+      brdf::cli::AddEnergyCommand(app),
   };
 
   try {

@@ -1,0 +1,129 @@
+#include "cli/albedo_plot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+
+namespace brdf::cli {
+namespace {
+
+constexpr int kWidth = 960, kHeight = 600;
+constexpr int kLeft = 80, kRight = 30, kTop = 50, kBottom = 60;
+constexpr double kThetaAxisDeg = 90.0;
+const cv::Scalar kBlack(0, 0, 0), kGrey(170, 170, 170), kLightGrey(225, 225, 225);
+// OpenCV stores pixels as BGR.
+const cv::Scalar kChannelColours[3] = {cv::Scalar(40, 40, 220), cv::Scalar(40, 160, 40),
+                                       cv::Scalar(220, 80, 30)};
+const char* const kChannelLabels[3] = {"red", "green", "blue"};
+
+// Smallest "nice" tick step (1, 2 or 5 times a power of ten) giving at most `ticks` ticks.
+double TickStep(double range, int ticks) {
+  const double raw = range / ticks;
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  for (double factor : {1.0, 2.0, 5.0, 10.0}) {
+    if (factor * power >= raw) return factor * power;
+  }
+  return 10.0 * power;
+}
+
+// A tick value without the binary noise of repeated addition (0.6000000000000001 -> 0.6).
+std::string TickLabel(double value) {
+  std::ostringstream text;
+  text << std::setprecision(6) << value;
+  return text.str();
+}
+
+class PlotArea {
+ public:
+  explicit PlotArea(double albedo_top) : albedo_top_(albedo_top) {}
+  cv::Point At(double theta_deg, double albedo) const {
+    const double x = kLeft + theta_deg / kThetaAxisDeg * (kWidth - kLeft - kRight);
+    const double y = kHeight - kBottom - albedo / albedo_top_ * (kHeight - kTop - kBottom);
+    return cv::Point(static_cast<int>(std::lround(x)), static_cast<int>(std::lround(y)));
+  }
+  double albedo_top() const { return albedo_top_; }
+
+ private:
+  double albedo_top_;
+};
+
+void Label(cv::Mat* image, const std::string& text, cv::Point origin, double scale = 0.5) {
+  cv::putText(*image, text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, kBlack, 1, cv::LINE_AA);
+}
+
+}  // namespace
+
+void WriteAlbedoPlot(const AlbedoCurve& curve, const std::string& path) {
+  double highest = 1.0;
+  for (const AlbedoPoint& point : curve.points) {
+    const double top = (point.estimate.albedo + point.estimate.error).maxCoeff();
+    if (std::isfinite(top)) highest = std::max(highest, top);
+  }
+  const double step = TickStep(1.15 * highest, 8);
+  const PlotArea area(std::ceil(1.15 * highest / step) * step);
+  cv::Mat image(kHeight, kWidth, CV_8UC3, cv::Scalar(255, 255, 255));
+
+  // Grid and tick labels.
+  for (double theta = 0; theta <= kThetaAxisDeg + 1e-9; theta += 10) {
+    cv::line(image, area.At(theta, 0), area.At(theta, area.albedo_top()), kLightGrey);
+    Label(&image, TickLabel(theta), area.At(theta, 0) + cv::Point(-8, 22), 0.45);
+  }
+  for (double albedo = 0; albedo <= area.albedo_top() + 1e-9 * step; albedo += step) {
+    cv::line(image, area.At(0, albedo), area.At(kThetaAxisDeg, albedo), kLightGrey);
+    Label(&image, TickLabel(albedo), area.At(0, albedo) + cv::Point(-60, 5), 0.45);
+  }
+  cv::rectangle(image, area.At(0, area.albedo_top()), area.At(kThetaAxisDeg, 0), kBlack);
+
+  // a = 1, dashed: above it a material creates energy.
+  for (double theta = 0; theta < kThetaAxisDeg; theta += 2) {
+    cv::line(image, area.At(theta, 1.0), area.At(std::min(theta + 1, kThetaAxisDeg), 1.0), kGrey, 2,
+             cv::LINE_AA);
+  }
+  Label(&image, "a = 1", area.At(kThetaAxisDeg, 1.0) + cv::Point(-55, -8), 0.45);
+
+  for (int c = 0; c < 3; ++c) {
+    std::vector<cv::Point> line;
+    for (const AlbedoPoint& point : curve.points) {
+      if (std::isfinite(point.estimate.albedo[c])) {
+        line.push_back(area.At(point.theta_deg, point.estimate.albedo[c]));
+      }
+    }
+    if (line.size() == 1) cv::circle(image, line[0], 3, kChannelColours[c], cv::FILLED);
+    cv::polylines(image, line, false, kChannelColours[c], 2, cv::LINE_AA);
+    const cv::Point legend(kWidth - kRight - 130, kTop + 20 + 20 * c);
+    cv::line(image, legend, legend + cv::Point(25, 0), kChannelColours[c], 2, cv::LINE_AA);
+    Label(&image, kChannelLabels[c], legend + cv::Point(32, 5), 0.45);
+  }
+
+  std::string title = "directional albedo: " + curve.source;
+  if (title.size() > 90) title = title.substr(0, 87) + "...";
+  Label(&image, title, cv::Point(kLeft, 30), 0.55);
+  Label(&image, "theta (deg)", cv::Point(kWidth / 2 - 40, kHeight - 15));
+  Label(&image, "albedo", cv::Point(8, kTop - 12));
+  Label(&image, curve.conserving() ? "conserving" : "NOT conserving",
+        cv::Point(kLeft + 10, kTop + 25), 0.55);
+
+  std::vector<uchar> png;
+  try {
+    if (!cv::imencode(".png", image, png)) throw OutputError(path, "PNG encoding failed");
+  } catch (const cv::Exception& error) {
+    throw OutputError(path, std::string("PNG encoding failed: ") + error.what());
+  }
+  WriteFileAtomically(
+      path,
+      [&](std::ostream& out) {
+        out.write(reinterpret_cast<const char*>(png.data()),
+                  static_cast<std::streamsize>(png.size()));
+      },
+      /*binary=*/true);
+}
+
+}  // namespace brdf::cli

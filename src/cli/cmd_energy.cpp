@@ -1,0 +1,129 @@
+// brdf energy MODEL|FIT.json|FILE [--method quadrature|mc|importance] [--theta-steps N]
+//   [--samples N] [--seed N] [--json] [--out albedo.csv] [--plot albedo.png] [--quiet]
+// Directional albedo per channel against incidence angle, its maximum and where, an error
+// estimate per value, and the energy-conservation verdict (DESIGN §7). A material that does
+// not conserve energy is a finding, not a failure: the exit status is 0 whenever the check ran.
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli/albedo_plot.h"
+#include "cli/commands.h"
+#include "core/atomic_file.h"
+#include "core/progress.h"
+#include "core/text.h"
+#include "energy/albedo.h"
+#include "energy/measured.h"
+#include "models/model_source.h"
+
+namespace brdf::cli {
+namespace {
+
+nlohmann::json RgbJson(const Rgb& value) { return {value[0], value[1], value[2]}; }
+
+// DESIGN §7's fields, and what a script needs to trust them (errors, coverage, notes).
+nlohmann::json CurveJson(const AlbedoCurve& curve, double seconds) {
+  nlohmann::json albedo = nlohmann::json::array();
+  for (const AlbedoPoint& point : curve.points) {
+    albedo.push_back({{"theta_deg", point.theta_deg},
+                      {"rgb", RgbJson(point.estimate.albedo)},
+                      {"error", RgbJson(point.estimate.error)},
+                      {"coverage", point.estimate.coverage}});
+  }
+  return {{"source", curve.source},
+          {"method", AlbedoMethodName(curve.method)},
+          {"max_albedo", RgbJson(curve.max_albedo)},
+          {"max_albedo_error", RgbJson(curve.error_at_max)},
+          {"theta_deg_at_max",
+           {curve.theta_deg_at_max[0], curve.theta_deg_at_max[1], curve.theta_deg_at_max[2]}},
+          {"albedo", albedo},
+          {"conserving", curve.conserving()},
+          {"excess", curve.excess()},
+          {"verdict", curve.Verdict()},
+          {"min_coverage", curve.min_coverage},
+          {"notes", curve.notes},
+          {"warnings", curve.warnings},
+          {"evaluations", curve.evaluations},
+          {"time_s", seconds}};
+}
+
+void WriteAlbedoCsv(const AlbedoCurve& curve, const std::string& path) {
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    out << "theta_deg,r,g,b,error_r,error_g,error_b,coverage\n";
+    for (const AlbedoPoint& point : curve.points) {
+      out << FormatNumber(point.theta_deg);
+      for (int c = 0; c < 3; ++c) out << "," << FormatNumber(point.estimate.albedo[c]);
+      for (int c = 0; c < 3; ++c) out << "," << FormatNumber(point.estimate.error[c]);
+      out << "," << FormatNumber(point.estimate.coverage) << "\n";
+    }
+  });
+}
+
+}  // namespace
+
+Command AddEnergyCommand(CLI::App& parent) {
+  struct Options {
+    std::string source, method = "quadrature", out, plot;
+    AlbedoOptions albedo;
+    bool json = false, quiet = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* app = parent.add_subcommand(
+      "energy",
+      "Directional albedo vs incidence angle and the energy-conservation check (exit status 0 "
+      "whether or not the material conserves energy; the verdict is in the output)");
+  app->add_option("SOURCE", options->source,
+                  "a model string (e.g. blinn-phong:rho_s=0.04:m=200), a fit report (.json) or a "
+                  "measurement file (MERL .binary, ASTM, pbrt-v2 .brdf, Zemax .bsdf, native CSV)")
+      ->required();
+  app->add_option("--method", options->method,
+                  "quadrature (adaptive, lobe-centred), mc (cosine-weighted Monte Carlo) or "
+                  "importance (cosine + lobe mixture; models only)")
+      ->capture_default_str();
+  app->add_option("--theta-steps", options->albedo.theta_steps,
+                  "incidence angles, evenly spaced over 0..89 degrees")
+      ->capture_default_str();
+  app->add_option("--samples", options->albedo.samples, "Monte Carlo samples per angle")
+      ->capture_default_str();
+  app->add_option("--seed", options->albedo.seed,
+                  "Monte Carlo seed (results do not depend on the thread count)")
+      ->capture_default_str();
+  app->add_flag("--json", options->json, "print JSON (DESIGN §7 fields) instead of the table");
+  app->add_option("--out", options->out,
+                  "also write the curve as CSV (theta_deg, r, g, b, errors, coverage)");
+  app->add_option("--plot", options->plot, "also draw albedo vs theta as a PNG");
+  app->add_flag("--quiet", options->quiet, "no progress on stderr");
+
+  return {app, [options]() {
+            options->albedo.method = ParseAlbedoMethod(options->method);
+            options->albedo.Validate();
+            const auto start = std::chrono::steady_clock::now();
+            Progress progress("energy", options->albedo.theta_steps, options->quiet);
+            AlbedoCurve curve;
+            // A fit report or a model string names a model; any other existing file is data.
+            if (!IsFitReportPath(options->source) &&
+                std::filesystem::is_regular_file(options->source)) {
+              curve = MeasuredAlbedoCurve(LoadMeasuredBrdf(options->source), options->albedo,
+                                          &progress);
+            } else {
+              curve = ModelAlbedoCurve(LoadModel(options->source), options->albedo, &progress);
+            }
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            if (!options->out.empty()) WriteAlbedoCsv(curve, options->out);
+            if (!options->plot.empty()) WriteAlbedoPlot(curve, options->plot);
+            if (options->json) {
+              for (const std::string& warning : curve.warnings) {
+                std::cerr << "brdf energy: warning: " << warning << "\n";
+              }
+              std::cout << CurveJson(curve, seconds).dump(2) << "\n";
+            } else {
+              std::cout << curve.Report();
+            }
+            return 0;
+          }};
+}
+
+}  // namespace brdf::cli

@@ -1,0 +1,307 @@
+#include "energy/albedo.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <iomanip>
+#include <sstream>
+
+#include "core/angles.h"
+#include "core/errors.h"
+#include "core/text.h"
+#include "energy/model_terms.h"
+#include "energy/monte_carlo.h"
+
+namespace brdf {
+namespace {
+
+// Below this coverage an angle gets a warning: 1% of the cosine-weighted hemisphere.
+constexpr double kCoverageWarning = 0.99;
+// The cosine-sampling share kept in an importance mixture whatever the lobe's weight, so that
+// the mixture's pdf never falls far below the cosine pdf where the BRDF is still non-zero
+// (Hesterberg 1995, defensive mixtures).
+constexpr double kDefensiveCosineShare = 0.1;
+
+const char* const kChannelNames[3] = {"r", "g", "b"};
+
+std::vector<SamplingStrategy> ImportanceStrategies(const std::vector<AlbedoTerm>& terms) {
+  double total_scale = 0;
+  for (const AlbedoTerm& term : terms) total_scale += term.scale;
+  std::vector<SamplingStrategy> strategies = {{{LobeFrame::kNormal, 1.0}, 0.0}};
+  for (const AlbedoTerm& term : terms) {
+    if (term.coordinates.frame == LobeFrame::kNormal) {
+      strategies[0].weight += term.scale;
+    } else {
+      strategies.push_back({term.coordinates, term.scale});
+    }
+  }
+  strategies[0].weight =
+      std::max(strategies[0].weight, kDefensiveCosineShare * std::max(total_scale, 1e-300));
+  return strategies;
+}
+
+Vec3 OutgoingAt(double theta_o) { return SphericalDirection(theta_o, 0.0); }
+
+// Runs `estimate_at(theta_radians, angle_index)` for every angle of the options, in parallel.
+AlbedoCurve ComputeCurve(const std::string& source, const AlbedoOptions& options,
+                         Progress* progress,
+                         const std::function<AlbedoEstimate(double, uint64_t)>& estimate_at) {
+  options.Validate();
+  AlbedoCurve curve;
+  curve.source = source;
+  curve.method = options.method;
+  const std::vector<double> thetas = options.ThetaDegrees();
+  curve.points.resize(thetas.size());
+  tbb::parallel_for(size_t{0}, thetas.size(), [&](size_t k) {
+    curve.points[k] = {thetas[k], estimate_at(DegToRad(thetas[k]), k)};
+    if (progress != nullptr) progress->Advance();
+  });
+  return curve;
+}
+
+std::string Fixed(double value, int digits) {
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(digits) << value;
+  return text.str();
+}
+
+// Four significant digits: amounts from 1e-7 to 1e3 read alike.
+std::string Significant(double value) {
+  std::ostringstream text;
+  text << std::setprecision(4) << value;
+  return text.str();
+}
+
+std::string Rgb3(const Rgb& value, int digits) {
+  return Fixed(value[0], digits) + " " + Fixed(value[1], digits) + " " + Fixed(value[2], digits);
+}
+
+}  // namespace
+
+const char* AlbedoMethodName(AlbedoMethod method) {
+  switch (method) {
+    case AlbedoMethod::kQuadrature:
+      return "quadrature";
+    case AlbedoMethod::kMonteCarlo:
+      return "mc";
+    case AlbedoMethod::kImportance:
+      return "importance";
+  }
+  return "?";
+}
+
+AlbedoMethod ParseAlbedoMethod(std::string_view name) {
+  for (AlbedoMethod method :
+       {AlbedoMethod::kQuadrature, AlbedoMethod::kMonteCarlo, AlbedoMethod::kImportance}) {
+    if (name == AlbedoMethodName(method)) return method;
+  }
+  throw UsageError("unknown method '" + std::string(name) +
+                   "' (expected quadrature, mc or importance)");
+}
+
+void AlbedoOptions::Validate() const {
+  if (theta_steps < 1 || theta_steps > 100000) {
+    throw UsageError("--theta-steps must be in [1, 100000], got " + std::to_string(theta_steps));
+  }
+  if (!(theta_max_deg >= 0.0 && theta_max_deg < 90.0)) {
+    throw UsageError("the largest theta must be in [0, 90) degrees");
+  }
+  if (method != AlbedoMethod::kQuadrature && samples < 2) {
+    throw UsageError("--samples must be at least 2, got " + std::to_string(samples));
+  }
+  quadrature.Validate();
+  if (measured_max_intervals < 1) throw UsageError("measured data need at least one interval");
+}
+
+std::vector<double> AlbedoOptions::ThetaDegrees() const {
+  std::vector<double> thetas(theta_steps, 0.0);
+  for (int k = 1; k < theta_steps; ++k) thetas[k] = theta_max_deg * k / (theta_steps - 1);
+  return thetas;
+}
+
+bool AlbedoCurve::conserving() const {
+  // Only an excess larger than twice its error estimate counts against a material: a material
+  // exactly at the bound (lambert:rho_d=1, phong with rho_d + rho_s = 1) must not flip with
+  // rounding.
+  return (max_albedo - 1.0 <= 2.0 * error_at_max).all();
+}
+
+double AlbedoCurve::excess() const { return max_albedo.maxCoeff() - 1.0; }
+
+std::string AlbedoCurve::Verdict() const {
+  int worst = 0;
+  max_albedo.maxCoeff(&worst);
+  const double amount = std::abs(excess());
+  const std::string max_text = "max albedo " + Fixed(max_albedo[worst], 6);
+  const std::string error_text = Significant(error_at_max[worst]);
+  std::string verdict;
+  if (!conserving()) {
+    verdict = "NOT conserving: " + max_text + " (" + kChannelNames[worst] + ", theta " +
+              Fixed(theta_deg_at_max[worst], 1) + " deg) exceeds 1 by " + Significant(amount);
+  } else if (excess() > 0.0) {
+    verdict = "conserving at the bound: " + max_text + " exceeds 1 by " + Significant(amount) +
+              ", less than twice its error estimate (" + error_text + ")";
+  } else {
+    verdict = "conserving: " + max_text + " <= 1 (margin " + Significant(amount) + ")";
+    if (amount <= 2.0 * error_at_max[worst]) {
+      verdict += ", at the bound within twice the error estimate (" + error_text + ")";
+    }
+  }
+  if (coverage_at_max < kCoverageWarning) {
+    verdict += "; the maximum lies where the data cover only " + Fixed(100 * coverage_at_max, 1) +
+               "% of the hemisphere, so it is not decisive";
+  }
+  return verdict;
+}
+
+std::string AlbedoCurve::Summary() const {
+  return source + " [" + AlbedoMethodName(method) + "]: max albedo " + Rgb3(max_albedo, 6) +
+         " at theta " + Fixed(theta_deg_at_max[0], 1) + " " + Fixed(theta_deg_at_max[1], 1) + " " +
+         Fixed(theta_deg_at_max[2], 1) + " deg; " + Verdict();
+}
+
+std::string AlbedoCurve::Report() const {
+  std::ostringstream out;
+  out << "directional albedo of " << source << " by " << AlbedoMethodName(method) << " ("
+      << (method == AlbedoMethod::kQuadrature ? "error = Gauss-Kronrod estimate"
+                                              : "error = one standard error")
+      << ")\n";
+  for (const std::string& note : notes) out << "note: " << note << "\n";
+  out << "theta_deg        r         g         b     err_r     err_g     err_b  coverage\n";
+  for (const AlbedoPoint& point : points) {
+    out << std::setw(9) << Fixed(point.theta_deg, 2);
+    for (int c = 0; c < 3; ++c) out << " " << std::setw(9) << Fixed(point.estimate.albedo[c], 6);
+    for (int c = 0; c < 3; ++c) {
+      out << " " << std::setw(9) << std::scientific << std::setprecision(1)
+          << point.estimate.error[c] << std::defaultfloat;
+    }
+    out << " " << std::setw(9) << Fixed(point.estimate.coverage, 4) << "\n";
+  }
+  for (const std::string& warning : warnings) out << "warning: " << warning << "\n";
+  for (int c = 0; c < 3; ++c) {
+    out << "max " << kChannelNames[c] << " = " << Fixed(max_albedo[c], 6) << " +- "
+        << std::scientific << std::setprecision(1) << error_at_max[c] << std::defaultfloat
+        << " at theta " << Fixed(theta_deg_at_max[c], 2) << " deg\n";
+  }
+  out << "BRDF evaluations: " << evaluations << "\n";
+  out << Verdict() << "\n";
+  return out.str();
+}
+
+void FinishAlbedoCurve(AlbedoCurve* curve) {
+  curve->max_albedo = Rgb::Constant(-std::numeric_limits<double>::infinity());
+  curve->min_coverage = 1.0;
+  curve->evaluations = 0;
+  double theta_of_min_coverage = 0, first_low_coverage = -1;
+  for (const AlbedoPoint& point : curve->points) {
+    for (int c = 0; c < 3; ++c) {
+      if (point.estimate.albedo[c] > curve->max_albedo[c]) {
+        curve->max_albedo[c] = point.estimate.albedo[c];
+        curve->error_at_max[c] = point.estimate.error[c];
+        curve->theta_deg_at_max[c] = point.theta_deg;
+      }
+    }
+    if (point.estimate.coverage < curve->min_coverage) {
+      curve->min_coverage = point.estimate.coverage;
+      theta_of_min_coverage = point.theta_deg;
+    }
+    if (point.estimate.coverage < kCoverageWarning && first_low_coverage < 0) {
+      first_low_coverage = point.theta_deg;
+    }
+    curve->evaluations += point.estimate.evaluations;
+  }
+  if (curve->points.empty()) curve->max_albedo = Rgb::Zero();
+  int worst = 0;
+  curve->max_albedo.maxCoeff(&worst);
+  for (const AlbedoPoint& point : curve->points) {
+    if (point.theta_deg == curve->theta_deg_at_max[worst]) {
+      curve->coverage_at_max = point.estimate.coverage;
+    }
+  }
+  if (first_low_coverage >= 0) {
+    curve->warnings.push_back(
+        "the data cover less than " + Fixed(100 * kCoverageWarning, 0) +
+        "% of the cosine-weighted hemisphere from theta = " + Fixed(first_low_coverage, 1) +
+        " deg (least: " + Fixed(100 * curve->min_coverage, 1) + "% at " +
+        Fixed(theta_of_min_coverage, 1) +
+        " deg); values there are extrapolated or zero (see the notes), so the albedo is less "
+        "certain than its error estimate says");
+  }
+}
+
+AlbedoEstimate ModelDirectionalAlbedo(const Model& model, double theta_o,
+                                      const AlbedoOptions& options, uint64_t stream) {
+  const Vec3 wo = OutgoingAt(theta_o);
+  const std::vector<AlbedoTerm> terms = AlbedoTerms(model);
+  AlbedoEstimate estimate;
+  switch (options.method) {
+    case AlbedoMethod::kQuadrature: {
+      // Each term gets an equal share of the error budget.
+      LobeQuadratureOptions per_term = options.quadrature;
+      per_term.tolerance /= static_cast<double>(terms.size());
+      for (const AlbedoTerm& term : terms) {
+        estimate +=
+            IntegrateInLobeCoordinates(ModelBrdf(term.model), wo, term.coordinates, per_term);
+      }
+      return estimate;
+    }
+    case AlbedoMethod::kMonteCarlo: {
+      RandomStream random(options.seed, stream);
+      return EstimateAlbedoCosine(ModelBrdf(model), wo, options.samples, &random);
+    }
+    case AlbedoMethod::kImportance: {
+      RandomStream random(options.seed, stream);
+      return EstimateAlbedoByMixture(ModelBrdf(model), wo, ImportanceStrategies(terms),
+                                     options.samples, &random);
+    }
+  }
+  return estimate;
+}
+
+AlbedoEstimate MeasuredDirectionalAlbedo(const MeasuredBrdf& measured, double theta_o,
+                                         const AlbedoOptions& options, uint64_t stream) {
+  const Vec3 wo = OutgoingAt(theta_o);
+  switch (options.method) {
+    case AlbedoMethod::kQuadrature: {
+      LobeQuadratureOptions capped = options.quadrature;
+      capped.max_intervals = std::min(capped.max_intervals, options.measured_max_intervals);
+      return IntegrateInLobeCoordinates(measured.brdf, wo, measured.coordinates, capped);
+    }
+    case AlbedoMethod::kMonteCarlo: {
+      RandomStream random(options.seed, stream);
+      return EstimateAlbedoCosine(measured.brdf, wo, options.samples, &random);
+    }
+    case AlbedoMethod::kImportance:
+      break;
+  }
+  throw UsageError(
+      "importance sampling draws from a model's lobe; for measured data use --method "
+      "quadrature or mc");
+}
+
+AlbedoCurve ModelAlbedoCurve(const Model& model, const AlbedoOptions& options, Progress* progress) {
+  AlbedoCurve curve =
+      ComputeCurve(model.ToString(), options, progress, [&](double theta_o, uint64_t stream) {
+        return ModelDirectionalAlbedo(model, theta_o, options, stream);
+      });
+  FinishAlbedoCurve(&curve);
+  return curve;
+}
+
+AlbedoCurve MeasuredAlbedoCurve(const MeasuredBrdf& measured, const AlbedoOptions& options,
+                                Progress* progress) {
+  if (options.method == AlbedoMethod::kImportance) {
+    MeasuredDirectionalAlbedo(measured, 0.0, options);  // throws the descriptive error
+  }
+  AlbedoCurve curve =
+      ComputeCurve(measured.source, options, progress, [&](double theta_o, uint64_t stream) {
+        return MeasuredDirectionalAlbedo(measured, theta_o, options, stream);
+      });
+  curve.notes = measured.notes;
+  FinishAlbedoCurve(&curve);
+  return curve;
+}
+
+}  // namespace brdf

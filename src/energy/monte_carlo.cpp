@@ -1,0 +1,95 @@
+#include "energy/monte_carlo.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/angles.h"
+#include "core/errors.h"
+#include "energy/sampling.h"
+
+namespace brdf {
+
+Vec3 SampleStrategy(const LobeCoordinates& coordinates, const Vec3& wo, const Point2& u) {
+  switch (coordinates.frame) {
+    case LobeFrame::kNormal:
+      return coordinates.exponent == 1.0 ? SampleCosineHemisphere(u)
+                                         : SamplePowerCosineLobe(u, coordinates.exponent);
+    case LobeFrame::kMirror:
+      return Frame::FromZ(MirrorDirection(wo))
+          .FromLocal(SamplePowerCosineLobe(u, coordinates.exponent));
+    case LobeFrame::kHalfVector:
+      return Reflect(wo, SamplePowerCosineLobe(u, coordinates.exponent));
+  }
+  return Vec3::UnitZ();
+}
+
+double StrategyPdf(const LobeCoordinates& coordinates, const Vec3& wo, const Vec3& wi) {
+  switch (coordinates.frame) {
+    case LobeFrame::kNormal:
+      return coordinates.exponent == 1.0 ? CosineHemispherePdf(CosTheta(wi))
+                                         : PowerCosineLobePdf(CosTheta(wi), coordinates.exponent);
+    case LobeFrame::kMirror:
+      return PowerCosineLobePdf(wi.dot(MirrorDirection(wo)), coordinates.exponent);
+    case LobeFrame::kHalfVector: {
+      const Vec3 sum = wi + wo;
+      if (sum.squaredNorm() <= 0.0) return 0.0;
+      const Vec3 half_vector = sum.normalized();
+      return HalfVectorToIncidentPdf(
+          PowerCosineLobePdf(CosTheta(half_vector), coordinates.exponent), wo.dot(half_vector));
+    }
+  }
+  return 0.0;
+}
+
+AlbedoEstimate EstimateAlbedoByMixture(const BrdfFunction& brdf, const Vec3& wo,
+                                       const std::vector<SamplingStrategy>& strategies,
+                                       int64_t samples, RandomStream* stream) {
+  if (samples < 2) throw UsageError("Monte Carlo needs at least 2 samples");
+  double total_weight = 0;
+  for (const SamplingStrategy& strategy : strategies) total_weight += strategy.weight;
+  if (strategies.empty() || !(total_weight > 0.0)) {
+    throw UsageError("importance sampling needs a strategy with positive weight");
+  }
+  // Welford's running mean and sum of squared deviations, per channel: stable for 1e8 samples.
+  Rgb mean = Rgb::Zero(), squared_deviations = Rgb::Zero();
+  double unsupported = 0;  // sum of cos/pdf over draws in holes: estimates their cosine measure
+  for (int64_t k = 0; k < samples; ++k) {
+    // Choose a strategy with the first number, then draw its direction with the next two.
+    double choice = stream->Uniform() * total_weight;
+    size_t chosen = 0;
+    while (chosen + 1 < strategies.size() && choice >= strategies[chosen].weight) {
+      choice -= strategies[chosen].weight;
+      ++chosen;
+    }
+    const Vec3 wi = SampleStrategy(strategies[chosen].coordinates, wo, stream->Uniform2D());
+    Rgb value = Rgb::Zero();
+    if (CosTheta(wi) > 0.0) {
+      double pdf = 0;
+      for (const SamplingStrategy& strategy : strategies) {
+        pdf += strategy.weight / total_weight * StrategyPdf(strategy.coordinates, wo, wi);
+      }
+      const BrdfSample sample = brdf(wi, wo);
+      const bool finite = sample.value.allFinite();
+      if (pdf > 0.0 && (!sample.supported || !finite)) unsupported += CosTheta(wi) / pdf;
+      if (pdf > 0.0 && finite) value = sample.value * (CosTheta(wi) / pdf);
+    }
+    const Rgb delta = value - mean;
+    mean += delta / static_cast<double>(k + 1);
+    squared_deviations += delta * (value - mean);
+  }
+  AlbedoEstimate estimate;
+  estimate.albedo = mean;
+  estimate.error =
+      (squared_deviations / static_cast<double>(samples - 1) / static_cast<double>(samples)).sqrt();
+  estimate.coverage =
+      std::clamp(1.0 - unsupported / static_cast<double>(samples) * kInvPi, 0.0, 1.0);
+  estimate.evaluations = samples;
+  return estimate;
+}
+
+AlbedoEstimate EstimateAlbedoCosine(const BrdfFunction& brdf, const Vec3& wo, int64_t samples,
+                                    RandomStream* stream) {
+  return EstimateAlbedoByMixture(brdf, wo, {{{LobeFrame::kNormal, 1.0}, 1.0}}, samples, stream);
+}
+
+}  // namespace brdf
