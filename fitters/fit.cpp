@@ -17,6 +17,7 @@
 
 #include "core/errors.h"
 #include "core/text.h"
+#include "energy/albedo.h"
 #include "fitters/energy_bound.h"
 #include "fitters/parameterization.h"
 #include "fitters/residual.h"
@@ -503,19 +504,29 @@ FitResult RunFit(LobeKind kind, const ModelInfo& info, const PreparedSamples& pr
   const double n = static_cast<double>(residuals.size());
   result.bic = n * std::log(std::max(rss, 1e-300) / n) + result.free_variables * std::log(n);
 
-  // Energy: the bound is built into the parameterization; report the albedo it allows.
+  // Energy: the bound is built into the parameterization (closed form, energy_bound.h); the
+  // report checks the fitted material independently with the albedo integrator of
+  // `brdf energy` (DESIGN §7), over 90 incidence angles.
   const Model& model = result.model;
+  Rgb bound = Rgb::Zero();
   for (int c = 0; c < 3; ++c) {
-    result.energy.max_albedo[c] = model.Param("rho_d", c);
+    bound[c] = model.Param("rho_d", c);
     if (kind != LobeKind::kNone) {
-      result.energy.max_albedo[c] +=
+      bound[c] +=
           LobeAlbedoAtNormal(kind, params[models::LobedSlots::kExponent]) * model.Param("rho_s", c);
     }
   }
-  result.energy.conserving = (result.energy.max_albedo <= 1.0 + 1e-12).all();
-  result.energy.method = "closed form at normal incidence: rho_d + A(exponent) rho_s";
+  const AlbedoCurve curve = ModelAlbedoCurve(model, AlbedoOptions{});
+  result.energy.max_albedo = curve.max_albedo;
+  result.energy.albedo_error = curve.error_at_max;
+  result.energy.bound = bound;
+  result.energy.theta_deg_at_max = curve.theta_deg_at_max;
+  result.energy.conserving = curve.conserving();
+  result.energy.method = std::string("albedo integrated over ") +
+                         std::to_string(curve.points.size()) + " incidence angles (" +
+                         AlbedoMethodName(curve.method) + "); bound rho_d + A(m) rho_s";
   for (int c = 0; c < 3; ++c) {
-    if (result.energy.max_albedo[c] > 0.999) {
+    if (bound[c] > 0.999) {
       result.warnings.push_back(std::string("energy bound active in channel ") + "rgb"[c] +
                                 ": the data ask for an albedo of 1 or more");
     }

@@ -6,6 +6,7 @@
 //   std::cout << fit.Summary() << "\n";
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -45,8 +46,13 @@ struct FitMetrics {
   double cosine_l2 = 0;  // of f cos theta_i (Ngan et al. 2005)
 };
 
+// The fitted material's directional albedo, integrated by the energy library (DESIGN §7),
+// next to the closed-form bound the fit enforced.
 struct EnergyCheck {
-  Rgb max_albedo = Rgb::Zero();
+  Rgb max_albedo = Rgb::Zero();    // over incidence angles, per channel
+  Rgb albedo_error = Rgb::Zero();  // the integrator's error estimate at the maximum
+  std::array<double, 3> theta_deg_at_max = {0, 0, 0};
+  Rgb bound = Rgb::Zero();  // rho_d + A(m) rho_s, <= 1 by construction
   bool conserving = true;
   std::string method;
 };

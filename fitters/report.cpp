@@ -6,6 +6,8 @@
 namespace brdf::fitters {
 namespace {
 
+nlohmann::json RgbJson(const Rgb& rgb) { return {rgb[0], rgb[1], rgb[2]}; }
+
 // A parameter as JSON: [r, g, b] or a number; NaN (not available) becomes null.
 nlohmann::json ParamJson(const ParamInfo& param, const std::vector<double>& values) {
   auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
@@ -55,11 +57,13 @@ nlohmann::json FitReportJson(const FitResult& fit, const std::string& source,
   json["time_s"] = fit.time_s;
   json["bic"] = fit.bic;
   json["termination"] = fit.termination;
-  json["energy"] = {
-      {"max_albedo",
-       {fit.energy.max_albedo[0], fit.energy.max_albedo[1], fit.energy.max_albedo[2]}},
-      {"conserving", fit.energy.conserving},
-      {"method", fit.energy.method}};
+  const EnergyCheck& energy = fit.energy;
+  json["energy"] = {{"max_albedo", RgbJson(energy.max_albedo)},
+                    {"albedo_error", RgbJson(energy.albedo_error)},
+                    {"theta_deg_at_max", energy.theta_deg_at_max},
+                    {"bound", RgbJson(energy.bound)},
+                    {"conserving", energy.conserving},
+                    {"method", energy.method}};
   json["warnings"] = fit.warnings;
   json["source"] = source;
   if (selection != nullptr) {
@@ -111,8 +115,10 @@ void PrintFitReport(std::ostream& out, const FitResult& fit, const std::string& 
   std::snprintf(line, sizeof(line), "solve       %s, %d iterations, %.3f s\n",
                 fit.converged ? "converged" : "NOT CONVERGED", fit.iterations, fit.time_s);
   out << line;
-  std::snprintf(line, sizeof(line), "energy      max albedo %.4f %.4f %.4f: %s\n",
+  std::snprintf(line, sizeof(line),
+                "energy      max albedo %.4f %.4f %.4f (integrated; bound %.4f %.4f %.4f): %s\n",
                 fit.energy.max_albedo[0], fit.energy.max_albedo[1], fit.energy.max_albedo[2],
+                fit.energy.bound[0], fit.energy.bound[1], fit.energy.bound[2],
                 fit.energy.conserving ? "conserving" : "NOT conserving");
   out << line;
   for (const std::string& warning : fit.warnings) out << "warning     " << warning << "\n";

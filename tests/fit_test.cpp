@@ -307,3 +307,23 @@ TEST(FitCli, BadOptionsAreUsageErrors) {
 
 }  // namespace
 }  // namespace brdf
+
+namespace brdf {
+namespace {
+
+// The fit enforces the closed-form bound rho_d + A(m) rho_s <= 1, which assumes the albedo
+// peaks at normal incidence; the integrator that checks every fit must agree.
+TEST(FitEnergy, IntegratedMaximumIsTheClosedFormBound) {
+  for (const char* text : kTruths) {
+    const Model truth = ParseModel(text);
+    const FitResult fit = FitModel(Synthesize(truth, {}), truth.name(), FitOptions{});
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(fit.energy.max_albedo[c], fit.energy.bound[c], 1e-4) << text;
+      EXPECT_NEAR(fit.energy.theta_deg_at_max[c], 0.0, 1e-9) << text;
+    }
+    EXPECT_TRUE(fit.energy.conserving);
+  }
+}
+
+}  // namespace
+}  // namespace brdf
