@@ -13,7 +13,7 @@ const std::vector<std::string>& AutoCandidates() {
 }
 
 FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options,
-                       Selection* selection) {
+                       Selection* selection, std::vector<FitResult>* all_fits) {
   std::optional<FitResult> best;
   double total_time = 0;
   for (const std::string& name : AutoCandidates()) {
@@ -21,6 +21,7 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
     total_time += fit.time_s;
     selection->candidates.push_back(
         {name, fit.bic, fit.metrics.rmse, fit.free_variables, fit.converged});
+    if (all_fits != nullptr) all_fits->push_back(fit);
     // A clearly lower BIC wins; ties (to rounding) keep the earlier, simpler candidate. This
     // matters: blinn-phong and blinn-phong-exact span the same family of lobes (they differ
     // by a constant factor that rho_s absorbs), so they reach the same BIC.

@@ -34,8 +34,9 @@ struct Selection {
 // The candidates, simplest first.
 const std::vector<std::string>& AutoCandidates();
 
-// Fits every candidate; returns the chosen fit and fills `selection`.
+// Fits every candidate; returns the chosen fit and fills `selection`. `all_fits`, when given,
+// receives every candidate's fit in AutoCandidates() order.
 FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options,
-                       Selection* selection);
+                       Selection* selection, std::vector<FitResult>* all_fits = nullptr);
 
 }  // namespace brdf::fitters

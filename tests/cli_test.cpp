@@ -116,17 +116,42 @@ TEST(Cli, UnwritableOutputIsAnErrorAndLosesNothing) {
   EXPECT_EQ(dir.CountEntries(), 0);
 }
 
-TEST(Cli, DemoSummarizesEveryBundledMeasurement) {
+TEST(Cli, QuickDemoSimulatesFitsAndReports) {
   ScratchDir dir;
-  const testing::CommandResult result = RunBrdf("demo --quiet --out '" + dir.path() + "'");
+  const testing::CommandResult result = RunBrdf("demo --quick --quiet --out '" + dir.path() + "'");
   ASSERT_EQ(result.exit_status, 0) << result.err;
   EXPECT_NE(result.out.find("cayman"), std::string::npos);
-  EXPECT_NE(result.out.find("zemax"), std::string::npos);
+  EXPECT_NE(result.out.find("plastic-sphere"), std::string::npos);
   std::ifstream stream(dir.File("summary.json"));
   const nlohmann::json json = nlohmann::json::parse(stream);
   // data/ holds 4 ASTM, 5 pbrt-v2 and 1 Zemax file.
   EXPECT_EQ(json["measurements"].size(), 10u);
   for (const nlohmann::json& row : json["measurements"]) EXPECT_GT(row["samples"], 0);
+  // Three simulated samples and two real files in --quick, each fitted with four models.
+  ASSERT_EQ(json["datasets"].size(), 5u);
+  for (const nlohmann::json& dataset : json["datasets"]) {
+    EXPECT_TRUE(dataset["conserving"].get<bool>()) << dataset["name"];
+    ASSERT_EQ(dataset["fits"].size(), 4u);
+    for (const nlohmann::json& fit : dataset["fits"]) {
+      EXPECT_FALSE(testing::ReadFileText(dir.File(fit.get<std::string>())).empty()) << fit;
+    }
+  }
+  // The simulated truths come back: lambert for the matte sample, the sphere's blinn-phong.
+  EXPECT_EQ(json["datasets"][0]["chosen"], "lambert");
+  EXPECT_LT(json["datasets"][0]["truth_error"].get<double>(), 0.01);
+  EXPECT_LT(json["datasets"][1]["truth_error"].get<double>(), 0.03);
+  const std::string html = testing::ReadFileText(dir.File("report.html"));
+  EXPECT_NE(html.find("<h1>brdfkit demo report</h1>"), std::string::npos);
+  // Every image the report links exists.
+  size_t position = 0;
+  int images = 0;
+  while ((position = html.find("<img src=\"", position)) != std::string::npos) {
+    position += 10;
+    const std::string image = html.substr(position, html.find('"', position) - position);
+    EXPECT_FALSE(testing::ReadFileText(dir.File(image)).empty()) << image;
+    ++images;
+  }
+  EXPECT_GE(images, 5);
 }
 
 }  // namespace

@@ -13,12 +13,9 @@ int main(int argc, char** argv) {
   app.footer("Run 'brdf COMMAND --help' for the options of each command.");
 
   const std::vector<brdf::cli::Command> commands = {
-      brdf::cli::AddDemoCommand(app),
-      brdf::cli::AddInfoCommand(app),
-      brdf::cli::AddConvertCommand(app),
-      brdf::cli::AddFitCommand(app),
-      brdf::cli::AddMeasureCommand(app),
-      brdf::cli::AddEnergyCommand(app),
+      brdf::cli::AddDemoCommand(app),    brdf::cli::AddInfoCommand(app),
+      brdf::cli::AddConvertCommand(app), brdf::cli::AddFitCommand(app),
+      brdf::cli::AddMeasureCommand(app), brdf::cli::AddEnergyCommand(app),
   };
 
   try {

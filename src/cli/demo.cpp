@@ -1,0 +1,285 @@
+#include "cli/demo.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "cli/albedo_plot.h"
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "energy/albedo.h"
+#include "fitters/report.h"
+#include "gonio/measure.h"
+#include "io/formats.h"
+#include "models/model_string.h"
+
+namespace brdf::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Steps are announced on stderr when it is a terminal (DESIGN §3).
+class Steps {
+ public:
+  Steps(int total, bool quiet) : total_(total), enabled_(!quiet && ::isatty(STDERR_FILENO)) {}
+  void Announce(const std::string& what) {
+    if (enabled_) std::cerr << "[" << ++done_ << "/" << total_ << "] " << what << "\n";
+  }
+
+ private:
+  int total_, done_ = 0;
+  bool enabled_;
+};
+
+// Measurement files under `directory`, recognised by extension, in a stable order.
+std::vector<std::string> FindMeasurements(const std::string& directory) {
+  if (!fs::is_directory(directory)) {
+    throw UsageError(directory + ": not a directory (give the bundled data with --data DIR)");
+  }
+  std::vector<std::string> paths;
+  for (const auto& entry : fs::recursive_directory_iterator(directory)) {
+    if (!entry.is_regular_file()) continue;
+    std::string extension = entry.path().extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
+    for (const FileFormat& format : FileFormats()) {
+      if (std::find(format.extensions.begin(), format.extensions.end(), extension) !=
+          format.extensions.end()) {
+        paths.push_back(entry.path().string());
+        break;
+      }
+    }
+  }
+  std::sort(paths.begin(), paths.end());
+  return paths;
+}
+
+// The three simulated samples: what a gonioreflectometer, an image-based sphere rig and a
+// micro-geometry simulation would each hand a user.
+struct SimulatedSample {
+  const char* name;
+  const char* title;
+  const char* truth;  // model string, or "" when there is no analytic truth
+  std::string sample;
+  std::string schedule;
+};
+
+std::vector<SimulatedSample> SimulatedSamples(const DemoOptions& options,
+                                              const std::string& surface_json) {
+  const bool quick = options.quick;
+  return {
+      {"matte", "Matte paint (flat analytic sample, full hemisphere)", "lambert:rho_d=0.6,0.45,0.3",
+       "model:lambert:rho_d=0.6,0.45,0.3",
+       quick ? "hemisphere:theta_i_step=15:theta_o_step=10:phi_o_step=15" : "hemisphere"},
+      {"plastic-sphere", "Glossy red plastic (image-based: rasterized sphere)",
+       "blinn-phong:rho_d=0.25,0.05,0.04:rho_s=0.2:m=200",
+       "sphere:blinn-phong:rho_d=0.25,0.05,0.04:rho_s=0.2:m=200",
+       quick ? "inplane:step=30" : "inplane:step=10"},
+      {"rough-gold", "Rough gold micro-surface (ray traced with Embree)", "",
+       "surface:" + surface_json, quick ? "inplane:step=20" : "inplane:step=10"},
+  };
+}
+
+// A rough gold surface (complex IOR of gold at ~650/550/450 nm, Johnson & Christy 1972) with
+// as many rays as the run can afford.
+std::string WriteSurfaceSample(const std::string& directory, bool quick) {
+  const std::string path = directory + "/rough-gold-surface.json";
+  WriteFileAtomically(path, [&](std::ostream& out) {
+    out << "{\n  \"heightfield\": {\"kind\": \"gaussian\", \"rms_slope\": 0.3, \"resolution\": "
+        << (quick ? 128 : 256) << ", \"seed\": 1, \"correlation\": 4},\n"
+        << "  \"base\": \"conductor:ior=0.18,0.42,1.37:k=3.42,2.35,1.77\",\n"
+        << "  \"bounces\": 8,\n  \"rays_per_incidence\": " << (quick ? 100000 : 1000000) << "\n}\n";
+  });
+  return path;
+}
+
+double MaxRelativeError(const Model& fitted, const Model& truth) {
+  double worst = 0;
+  for (size_t p = 0; p < truth.params().size(); ++p) {
+    if (truth.params()[p] == 0) continue;
+    worst = std::max(worst, std::abs(fitted.params()[p] / truth.params()[p] - 1));
+  }
+  return worst;
+}
+
+void FitDataset(const Measurement& measurement, const DemoOptions& options,
+                const std::string& out_dir, DemoDataset* dataset) {
+  fitters::FitOptions fit_options;
+  if (options.quick) {
+    fit_options.max_samples = 5000;
+    fit_options.start_exponents = {4, 64, 1024, 16384};
+  }
+  const auto start = Clock::now();
+  fitters::SelectAndFit(measurement, fit_options, &dataset->selection, &dataset->fits);
+  for (size_t k = 0; k < dataset->fits.size(); ++k) {
+    const fitters::FitResult& fit = dataset->fits[k];
+    if (fit.model.name() == dataset->selection.chosen) dataset->chosen = k;
+    const std::string relative = "fits/" + dataset->name + "-" + fit.model.name() + ".json";
+    const bool chosen = fit.model.name() == dataset->selection.chosen;
+    const nlohmann::json report = fitters::FitReportJson(fit, dataset->measurement_path,
+                                                         chosen ? &dataset->selection : nullptr);
+    WriteFileAtomically(out_dir + "/" + relative,
+                        [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+    dataset->fit_paths.push_back(relative);
+  }
+  if (!dataset->truth.empty()) {
+    const Model truth = ParseModel(dataset->truth);
+    for (const fitters::FitResult& fit : dataset->fits) {
+      if (fit.model.name() == truth.name()) {
+        dataset->truth_error = MaxRelativeError(fit.model, truth);
+      }
+    }
+  }
+  // The chosen fit's albedo curve, as a chart.
+  const fitters::FitResult& chosen = dataset->fits[dataset->chosen];
+  const AlbedoCurve curve = ModelAlbedoCurve(chosen.model, AlbedoOptions{});
+  const std::string plot = "images/" + dataset->name + "-albedo.png";
+  WriteAlbedoPlot(curve, out_dir + "/" + plot);
+  dataset->images.push_back({"directional albedo of the " + chosen.model.name() + " fit", plot});
+  dataset->seconds += SecondsSince(start);
+}
+
+}  // namespace
+
+DemoResult RunDemo(const DemoOptions& options) {
+  const auto start = Clock::now();
+  DemoResult result;
+  const std::vector<std::string> bundled = FindMeasurements(options.data_dir);
+  if (bundled.empty()) throw UsageError(options.data_dir + ": no measurement files found");
+  for (const char* sub : {"measurements", "fits", "images"}) {
+    fs::create_directories(options.out_dir + "/" + sub);
+  }
+  // Real data fitted: every Cornell sample and the Zemax file; the pbrt-v2 copies of the
+  // Cornell files hold the same numbers, so only mystique (pbrt-v2 only) is added.
+  std::vector<std::string> real;
+  for (const std::string& path : bundled) {
+    const std::string name = fs::path(path).filename().string();
+    const bool astm = path.find(".astm") != std::string::npos;
+    if (astm || name == "mystique.brdf" || path.find(".bsdf") != std::string::npos) {
+      if (!options.quick || name == "cayman.astm" || path.find(".bsdf") != std::string::npos) {
+        real.push_back(path);
+      }
+    }
+  }
+  const std::string surface_json = WriteSurfaceSample(options.out_dir, options.quick);
+  const std::vector<SimulatedSample> simulated = SimulatedSamples(options, surface_json);
+  Steps steps(static_cast<int>(1 + 2 * simulated.size() + real.size()), options.quiet);
+
+  steps.Announce("summarizing " + std::to_string(bundled.size()) + " bundled measurements");
+  for (const std::string& path : bundled) {
+    SummaryRow row = SummarizeFile(path);
+    row.path = fs::relative(path, options.data_dir).string();
+    row.measurement.samples.clear();
+    result.bundled.push_back(std::move(row));
+  }
+
+  for (const SimulatedSample& sample : simulated) {
+    steps.Announce("measuring " + std::string(sample.name) + " (" + sample.sample + ", " +
+                   sample.schedule + ")");
+    DemoDataset dataset;
+    dataset.name = sample.name;
+    dataset.title = sample.title;
+    dataset.kind = "simulated";
+    dataset.source = sample.sample;
+    dataset.truth = sample.truth;
+    const auto measure_start = Clock::now();
+    gonio::MeasureOptions measure;
+    measure.sample = sample.sample;
+    measure.schedule = sample.schedule;
+    measure.seed = 1;
+    const Measurement measurement = gonio::Measure(measure, gonio::MakeSchedule(sample.schedule));
+    dataset.measurement_path = "measurements/" + dataset.name + ".csv";
+    WriteMeasurement(measurement, options.out_dir + "/" + dataset.measurement_path);
+    dataset.samples = measurement.samples.size();
+    dataset.seconds = SecondsSince(measure_start);
+    steps.Announce("fitting every model to " + dataset.name);
+    FitDataset(measurement, options, options.out_dir, &dataset);
+    result.datasets.push_back(std::move(dataset));
+  }
+
+  for (const std::string& path : real) {
+    steps.Announce("fitting every model to " + fs::relative(path, options.data_dir).string());
+    DemoDataset dataset;
+    dataset.name = fs::path(path).stem().string();
+    dataset.kind = "real";
+    dataset.source = fs::relative(path, options.data_dir).string();
+    dataset.measurement_path = path;
+    const Measurement measurement = ReadMeasurement(path);
+    dataset.title = measurement.SampleName() + " (" + measurement.format + ", real)";
+    dataset.samples = measurement.samples.size();
+    FitDataset(measurement, options, options.out_dir, &dataset);
+    result.datasets.push_back(std::move(dataset));
+  }
+  if (options.quick) {
+    result.notes.push_back(
+        "--quick: coarser schedules, fewer rays, a 5,000-sample fit subsample "
+        "and only cayman and the Zemax file among the real data");
+  }
+  result.seconds = SecondsSince(start);
+  return result;
+}
+
+void PrintDemoSummary(std::ostream& out, const DemoResult& result) {
+  out << "Bundled real measurements (" << result.bundled.size() << " files):\n";
+  PrintSummaryTable(out, result.bundled);
+  out << "\nFits (--model auto over lambert, phong, blinn-phong, blinn-phong-exact; energy "
+         "integrated over 90 incidence angles):\n";
+  char line[512];
+  std::snprintf(line, sizeof(line), "%-16s %-9s %8s %-17s %10s %10s %-22s %-10s %7s\n", "dataset",
+                "kind", "samples", "chosen", "rmse", "log rmse", "max albedo r,g,b", "energy",
+                "truth");
+  out << line;
+  for (const DemoDataset& dataset : result.datasets) {
+    const fitters::FitResult& fit = dataset.fits[dataset.chosen];
+    char albedo[64];
+    std::snprintf(albedo, sizeof(albedo), "%.3f,%.3f,%.3f", fit.energy.max_albedo[0],
+                  fit.energy.max_albedo[1], fit.energy.max_albedo[2]);
+    char truth[32] = "-";
+    if (dataset.truth_error >= 0) std::snprintf(truth, sizeof(truth), "%.2g", dataset.truth_error);
+    std::snprintf(line, sizeof(line), "%-16s %-9s %8zu %-17s %10.4g %10.4g %-22s %-10s %7s\n",
+                  dataset.name.substr(0, 16).c_str(), dataset.kind.c_str(), dataset.samples,
+                  fit.model.name().c_str(), fit.metrics.rmse, fit.metrics.log_rmse, albedo,
+                  fit.energy.conserving ? "conserving" : "NOT", truth);
+    out << line;
+  }
+  out << "(truth: largest relative error of the truth's own model fitted to the simulated "
+         "measurement)\n";
+  for (const std::string& note : result.notes) out << "note: " << note << "\n";
+}
+
+void WriteDemoSummaryJson(const DemoResult& result, const DemoOptions& options) {
+  nlohmann::json json;
+  json["seconds"] = result.seconds;
+  json["quick"] = options.quick;
+  json["measurements"] = nlohmann::json::array();
+  for (const SummaryRow& row : result.bundled) json["measurements"].push_back(SummaryJson(row));
+  json["datasets"] = nlohmann::json::array();
+  for (const DemoDataset& dataset : result.datasets) {
+    const fitters::FitResult& fit = dataset.fits[dataset.chosen];
+    json["datasets"].push_back({{"name", dataset.name},
+                                {"kind", dataset.kind},
+                                {"source", dataset.source},
+                                {"samples", dataset.samples},
+                                {"chosen", fit.model.name()},
+                                {"model", fit.model.ToString()},
+                                {"rmse", fit.metrics.rmse},
+                                {"conserving", fit.energy.conserving},
+                                {"truth", dataset.truth},
+                                {"truth_error", dataset.truth_error},
+                                {"fits", dataset.fit_paths}});
+  }
+  WriteFileAtomically(options.out_dir + "/summary.json",
+                      [&](std::ostream& out) { out << json.dump(2) << "\n"; });
+}
+
+}  // namespace brdf::cli

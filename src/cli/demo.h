@@ -1,0 +1,61 @@
+// The main job (`brdf demo`, DESIGN §3): simulate measurements of three samples with the
+// virtual gonioreflectometer, fit every model to them and to the bundled real measurements,
+// check the energy of every fit, render previews, and keep everything in one directory with
+// a self-contained HTML report.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "cli/summary_report.h"
+#include "fitters/fit.h"
+#include "fitters/select.h"
+
+namespace brdf::cli {
+
+struct DemoOptions {
+  std::string out_dir = "brdf-demo";
+  std::string data_dir;  // bundled measurements
+  bool quick = false;    // smaller simulations and fits (CI)
+  bool quiet = false;
+};
+
+struct DemoImage {
+  std::string caption;
+  std::string path;  // relative to the output directory
+};
+
+struct DemoDataset {
+  std::string name;              // file-name friendly
+  std::string title;             // for people
+  std::string kind;              // "simulated" or "real"
+  std::string source;            // sample spec, or the data file
+  std::string truth;             // the simulated truth's model string; empty for real data
+  std::string measurement_path;  // relative to the output directory (or the data file)
+  size_t samples = 0;
+  std::vector<fitters::FitResult> fits;  // every model, in AutoCandidates() order
+  std::vector<std::string> fit_paths;    // their reports, relative to the output directory
+  fitters::Selection selection;
+  size_t chosen = 0;        // index into fits
+  double truth_error = -1;  // max relative parameter error of the truth's model
+  std::vector<DemoImage> images;
+  double seconds = 0;
+};
+
+struct DemoResult {
+  std::vector<SummaryRow> bundled;  // every bundled real measurement, summarized
+  std::vector<DemoDataset> datasets;
+  std::vector<std::string> notes;
+  double seconds = 0;
+};
+
+DemoResult RunDemo(const DemoOptions& options);
+void PrintDemoSummary(std::ostream& out, const DemoResult& result);
+// Writes summary.json in the output directory: the bundled files' summaries and, per dataset,
+// the chosen model, its metrics and energy check, and every fit report's path.
+void WriteDemoSummaryJson(const DemoResult& result, const DemoOptions& options);
+// Writes report.html in the output directory (images beside it, referenced relatively).
+void WriteDemoReport(const DemoResult& result, const DemoOptions& options);
+
+}  // namespace brdf::cli

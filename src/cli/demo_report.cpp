@@ -1,0 +1,131 @@
+// report.html of `brdf demo`: one page a person can read in a browser, with the images beside
+// it (relative links) and every number the summary table prints.
+#include <cstdio>
+#include <sstream>
+
+#include "cli/demo.h"
+#include "core/atomic_file.h"
+#include "fitters/report.h"
+
+namespace brdf::cli {
+namespace {
+
+std::string Escape(const std::string& text) {
+  std::string escaped;
+  for (char c : text) {
+    switch (c) {
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      default:
+        escaped += c;
+    }
+  }
+  return escaped;
+}
+
+std::string Number(double value, const char* format = "%.4g") {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, value);
+  return buffer;
+}
+
+std::string Triple(const Rgb& rgb, const char* format = "%.3f") {
+  return Number(rgb[0], format) + ", " + Number(rgb[1], format) + ", " + Number(rgb[2], format);
+}
+
+void WriteBundledTable(std::ostream& out, const DemoResult& result) {
+  out << "<h2>Bundled real measurements</h2>\n<table>\n<tr><th>file</th><th>format</th>"
+         "<th>sample</th><th>samples</th><th>&theta;<sub>i</sub> (deg)</th>"
+         "<th>&theta;<sub>o</sub> (deg)</th><th>incidences</th><th>missing</th>"
+         "<th>negative</th></tr>\n";
+  for (const SummaryRow& row : result.bundled) {
+    const MeasurementSummary& s = row.summary;
+    out << "<tr><td>" << Escape(row.path) << "</td><td>" << Escape(s.format) << "</td><td>"
+        << Escape(s.sample_name) << "</td><td>" << s.samples << "</td><td>"
+        << Number(s.theta_i_deg[0], "%.1f") << "&ndash;" << Number(s.theta_i_deg[1], "%.1f")
+        << "</td><td>" << Number(s.theta_o_deg[0], "%.1f") << "&ndash;"
+        << Number(s.theta_o_deg[1], "%.1f") << "</td><td>" << s.incidence_directions << "</td><td>"
+        << s.missing << "</td><td>" << s.negative << "</td></tr>\n";
+  }
+  out << "</table>\n";
+}
+
+void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
+  out << "<h3 id=\"" << Escape(dataset.name) << "\">" << Escape(dataset.title) << "</h3>\n<p>"
+      << Escape(dataset.kind) << " &middot; " << Escape(dataset.source) << " &middot; "
+      << dataset.samples << " samples";
+  if (dataset.kind == "simulated") {
+    out << " &middot; measurement <a href=\"" << Escape(dataset.measurement_path) << "\">"
+        << Escape(dataset.measurement_path) << "</a>";
+  }
+  if (!dataset.truth.empty()) {
+    out << "<br>truth: <code>" << Escape(dataset.truth) << "</code>; its model fitted back "
+        << "within " << Number(100 * dataset.truth_error, "%.2g") << " % (largest parameter)";
+  }
+  out << "<br>selection: " << Escape(dataset.selection.reason) << "</p>\n";
+  out << "<table>\n<tr><th>model</th><th>BIC</th><th>rmse (sr<sup>-1</sup>)</th>"
+         "<th>log rmse</th><th>parameters</th><th>max albedo (integrated)</th><th>energy</th>"
+         "<th>converged</th><th>report</th></tr>\n";
+  for (size_t k = 0; k < dataset.fits.size(); ++k) {
+    const fitters::FitResult& fit = dataset.fits[k];
+    const bool chosen = k == dataset.chosen;
+    out << "<tr" << (chosen ? " class=\"chosen\"" : "") << "><td>" << Escape(fit.model.name())
+        << (chosen ? " &#9733;" : "") << "</td><td>" << Number(fit.bic, "%.6g") << "</td><td>"
+        << Number(fit.metrics.rmse) << "</td><td>" << Number(fit.metrics.log_rmse)
+        << "</td><td><code>" << Escape(fit.model.ToString()) << "</code></td><td>"
+        << Triple(fit.energy.max_albedo) << "</td><td>"
+        << (fit.energy.conserving ? "conserving" : "<b>NOT conserving</b>") << "</td><td>"
+        << (fit.converged ? "yes" : "<b>no</b>") << "</td><td><a href=\""
+        << Escape(dataset.fit_paths[k]) << "\">json</a></td></tr>\n";
+  }
+  out << "</table>\n";
+  for (const std::string& warning : dataset.fits[dataset.chosen].warnings) {
+    out << "<p class=\"warning\">" << Escape(warning) << "</p>\n";
+  }
+  out << "<div class=\"images\">\n";
+  for (const DemoImage& image : dataset.images) {
+    out << "<figure><img src=\"" << Escape(image.path) << "\" alt=\"" << Escape(image.caption)
+        << "\"><figcaption>" << Escape(image.caption) << "</figcaption></figure>\n";
+  }
+  out << "</div>\n";
+}
+
+}  // namespace
+
+void WriteDemoReport(const DemoResult& result, const DemoOptions& options) {
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
+          "<title>brdfkit demo report</title>\n<style>\n"
+          "body{font-family:sans-serif;max-width:1200px;margin:2em auto;padding:0 1em;"
+          "color:#222}\ntable{border-collapse:collapse;margin:0.5em 0;font-size:0.9em}\n"
+          "td,th{border:1px solid #ccc;padding:0.25em 0.5em;text-align:left}\n"
+          "tr.chosen{background:#eef6ee}\ncode{font-size:0.85em}\n"
+          ".warning{color:#a40}\n.images{display:flex;flex-wrap:wrap;gap:1em}\n"
+          "figure{margin:0}\nfigure img{max-width:560px}\nfigcaption{font-size:0.85em}\n"
+          "</style></head><body>\n<h1>brdfkit demo report</h1>\n";
+  html << "<p>Simulated measurements from the virtual gonioreflectometer and the bundled real "
+          "measurements, each fitted with every model (Ceres; energy conservation built into "
+          "the fit), the simplest model the data support chosen by BIC, and every fit's "
+          "directional albedo integrated over 90 incidence angles. Run time "
+       << Number(result.seconds, "%.1f") << " s" << (options.quick ? " (--quick)" : "")
+       << ".</p>\n";
+  for (const std::string& note : result.notes) html << "<p>" << Escape(note) << "</p>\n";
+  html << "<h2>Fits</h2>\n";
+  for (const DemoDataset& dataset : result.datasets) WriteDataset(html, dataset);
+  WriteBundledTable(html, result);
+  html << "</body></html>\n";
+  WriteFileAtomically(options.out_dir + "/report.html",
+                      [&](std::ostream& out) { out << html.str(); });
+}
+
+}  // namespace brdf::cli
