@@ -81,7 +81,7 @@ Rgb FacetMaterial::Fresnel(double cos_theta) const {
 Vec3 FacetMaterial::Scatter(const Vec3& wi, double u1, double u2, Rgb* throughput) const {
   if (model_) {
     // Cosine-weighted sampling: pdf = cos/π, so the weight f cos / pdf = π f.
-    const Vec3 wo = SampleCosineHemisphere(u1, u2);
+    const Vec3 wo = SampleCosineHemisphere(Point2(u1, u2));
     *throughput *= kPi * model_->Eval(wi, wo);
     return wo;
   }

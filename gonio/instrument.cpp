@@ -96,8 +96,8 @@ Vec3 Instrument::SourceDirection(const Vec3& wi, double u1, double u2, double* w
   Vec3 direction;
   if (source_kind == SourceKind::kCollimated) {
     // Each direction of the beam lights the surface with irradiance ∝ cos(theta_i').
-    direction = Frame(wi).FromLocal(
-        SampleUniformCone(u1, u2, std::cos(DegToRad(source_angular_radius_deg))));
+    direction = Frame::FromZ(wi).FromLocal(
+        SampleUniformCone(Point2(u1, u2), std::cos(DegToRad(source_angular_radius_deg))));
     *weight = direction.z() > 0 ? direction.z() / wi.z() : 0.0;
     return direction;
   }

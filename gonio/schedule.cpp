@@ -156,7 +156,7 @@ Schedule Adaptive(const std::string& spec) {
     }
     const Vec3 mirror = MirrorDirection(incidence.wi);
     incidence.detectors.push_back({mirror, 0});
-    const Frame frame(mirror);
+    const Frame frame = Frame::FromZ(mirror);
     for (double ring_deg : kAdaptiveRingsDeg) {
       const double ring = DegToRad(ring_deg);
       for (int k = 0; k < kAdaptiveRingPoints; ++k) {

@@ -29,7 +29,7 @@ bool HitSphere(const glm::dvec3& origin, const glm::dvec3& direction, glm::dvec3
 // phi_i = 0 (the materials are isotropic, DESIGN §2).
 void ToLocal(const Vec3& normal, const Vec3& wi, const Vec3& wo, Vec3* wi_local, Vec3* wo_local) {
   Vec3 tangent = wi - wi.dot(normal) * normal;
-  if (tangent.squaredNorm() < 1e-20) tangent = Frame(normal).tangent;
+  if (tangent.squaredNorm() < 1e-20) tangent = Frame::FromZ(normal).x;
   tangent.normalize();
   const Vec3 bitangent = normal.cross(tangent);
   *wi_local = Vec3(wi.dot(tangent), wi.dot(bitangent), wi.dot(normal));

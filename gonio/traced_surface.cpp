@@ -242,7 +242,7 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
           ++trace.paths_cut;
           break;
         }
-        const Frame facet(normal);
+        const Frame facet = Frame::FromZ(normal);
         const Vec3 wo_local =
             material_.Scatter(facet.ToLocal(-direction), rng.Uniform(), rng.Uniform(), &throughput);
         if (wo_local.z() <= 0) break;

@@ -1,7 +1,7 @@
 // The warps of energy/sampling.h against their pdfs: moments of the drawn directions match the
 // densities' closed forms, the pdfs integrate to one, and the half-vector Jacobian maps the
 // density of h onto the density of wi (its reciprocal integrates to the solid angle reached).
-#include "energy/sampling.h"
+#include "core/sampling.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 
 #include "core/angles.h"
 #include "core/errors.h"
-#include "energy/sampling.h"
+#include "core/sampling.h"
 
 namespace brdf {
 namespace {

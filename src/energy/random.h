@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-#include "energy/sampling.h"
+#include "core/sampling.h"
 
 namespace brdf {
 

@@ -1,5 +1,6 @@
-// Warps from the unit square to directions, each with its pdf (in solid angle), written once for
-// every integrator: the albedo estimators here, and later the preview renderer and the fitter.
+// Warps from the unit square to directions, each with its pdf (in solid angle), and the frames
+// they need, written once for every integrator: the albedo estimators, the virtual
+// gonioreflectometer and the preview renderer.
 // Families follow pbrt-v4's naming (Pharr, Jakob & Humphreys, PBR 4th ed., §A.5): SampleX maps
 // u in [0,1)^2 to a direction, XPdf is the density of that direction.
 //
@@ -64,6 +65,18 @@ struct Frame {
   Vec3 FromLocal(const Vec3& v) const { return v.x() * x + v.y() * y + v.z() * z; }
   Vec3 ToLocal(const Vec3& v) const { return Vec3(v.dot(x), v.dot(y), v.dot(z)); }
 };
+
+// A cone of solid angle `solid_angle` around an axis has cos(half-angle) = 1 - Ω/(2π).
+inline double ConeCosHalfAngle(double solid_angle) { return 1.0 - solid_angle / (2.0 * kPi); }
+
+// Uniform in solid angle inside the cone of half-angle acos(cos_max) around +z;
+// pdf = 1 / (2π (1 - cos_max)).
+inline Vec3 SampleUniformCone(const Point2& u, double cos_max) {
+  const double cos_theta = 1.0 - u.x() * (1.0 - cos_max);
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  const double phi = 2.0 * kPi * u.y();
+  return Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
+}
 
 // The direction w reflected about the unit vector n: 2 (w.n) n - w. With n = the half vector,
 // it maps wo to the wi whose half vector is n.
