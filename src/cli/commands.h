@@ -16,5 +16,6 @@ struct Command {
 Command AddInfoCommand(CLI::App& parent);
 Command AddConvertCommand(CLI::App& parent);
 Command AddDemoCommand(CLI::App& parent);
+Command AddTonemapCommand(CLI::App& parent);
 
 }  // namespace brdf::cli

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
       brdf::cli::AddDemoCommand(app),
       brdf::cli::AddInfoCommand(app),
       brdf::cli::AddConvertCommand(app),
+      brdf::cli::AddTonemapCommand(app),
   };
 
   try {

@@ -1,0 +1,64 @@
+#include "hdr/transfer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/errors.h"
+
+namespace brdf {
+
+double SrgbEncode(double linear) {
+  // IEC 61966-2-1: the linear segment 12.92 x meets 1.055 x^(1/2.4) - 0.055 at 0.0031308.
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
+}
+
+double SrgbDecode(double encoded) {
+  // 0.04045 = 12.92 * 0.0031308, the same knee seen from the encoded side.
+  return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+TransferCurve TransferCurve::Parse(const std::string& text) {
+  TransferCurve curve;
+  if (text == "srgb") return curve;
+  char* end = nullptr;
+  const double gamma = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !(gamma > 0.0) || !std::isfinite(gamma)) {
+    throw UsageError("--gamma: expected 'srgb' or a positive number, got '" + text + "'");
+  }
+  curve.kind = Kind::kGamma;
+  curve.gamma = gamma;
+  return curve;
+}
+
+std::string TransferCurve::Name() const {
+  if (kind == Kind::kSrgb) return "srgb";
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "gamma %g", gamma);
+  return buffer;
+}
+
+double TransferCurve::Encode(double linear) const {
+  linear = std::clamp(linear, 0.0, 1.0);
+  return kind == Kind::kSrgb ? SrgbEncode(linear) : std::pow(linear, 1.0 / gamma);
+}
+
+double TransferCurve::Decode(double encoded) const {
+  encoded = std::clamp(encoded, 0.0, 1.0);
+  return kind == Kind::kSrgb ? SrgbDecode(encoded) : std::pow(encoded, gamma);
+}
+
+Quantizer8::Quantizer8(const TransferCurve& curve) {
+  for (int k = 0; k < 255; ++k) {
+    thresholds_[k] = static_cast<float>(curve.Decode((k + 0.5) / 255.0));
+  }
+}
+
+uint8_t Quantizer8::operator()(float linear) const {
+  if (!(linear > 0.0f)) return 0;  // also NaN, which would otherwise compare past the end
+  // Number of thresholds at or below `linear`.
+  return static_cast<uint8_t>(std::upper_bound(thresholds_.begin(), thresholds_.end(), linear) -
+                              thresholds_.begin());
+}
+
+}  // namespace brdf
