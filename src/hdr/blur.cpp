@@ -6,8 +6,8 @@
 namespace brdf {
 
 BlurKind ParseBlurKind(const std::string& name) {
-  for (BlurKind kind : {BlurKind::kNone, BlurKind::kBox, BlurKind::kGaussian, BlurKind::kKawase,
-                        BlurKind::kDual}) {
+  for (BlurKind kind :
+       {BlurKind::kNone, BlurKind::kBox, BlurKind::kGaussian, BlurKind::kKawase, BlurKind::kDual}) {
     if (name == BlurKindName(kind)) return kind;
   }
   throw UsageError("unknown blur '" + name + "', expected none, box, gauss, kawase or dual");

@@ -23,8 +23,8 @@ ExtendedBox DesignExtendedBox(double variance) {
   ExtendedBox box;
   box.radius = static_cast<int>(std::floor(0.5 * (std::sqrt(12.0 * variance + 1.0) - 1.0)));
   const double r = box.radius;
-  const double alpha = (2 * r + 1) * (variance - r * (r + 1) / 3.0) / (2 * ((r + 1) * (r + 1) -
-                                                                           variance));
+  const double alpha =
+      (2 * r + 1) * (variance - r * (r + 1) / 3.0) / (2 * ((r + 1) * (r + 1) - variance));
   box.alpha = static_cast<float>(alpha);
   box.normaliser = static_cast<float>(1.0 / (2 * r + 1 + 2 * alpha));
   return box;

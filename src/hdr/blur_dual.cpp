@@ -60,8 +60,7 @@ Stencil<5> UpStencil(bool odd_x, bool odd_y) {
 }
 
 template <int N>
-void ApplyStencil(const Image& source, const Stencil<N>& s, int base_x, int base_y,
-                  float* out) {
+void ApplyStencil(const Image& source, const Stencil<N>& s, int base_x, int base_y, float* out) {
   float sum[kC] = {0, 0, 0, 0};
   for (int row = 0; row < N; ++row) {
     const int y = std::clamp(base_y + s.first + row, 0, source.height - 1);
@@ -89,9 +88,8 @@ Image Down(const Image& source) {
 
 Image Up(const Image& source, int width, int height) {
   static const std::array<Stencil<5>, 4> stencils = {UpStencil(false, false),
-                                                      UpStencil(true, false),
-                                                      UpStencil(false, true),
-                                                      UpStencil(true, true)};
+                                                     UpStencil(true, false), UpStencil(false, true),
+                                                     UpStencil(true, true)};
   Image result(width, height);
   tbb::parallel_for(0, height, [&](int y) {
     for (int x = 0; x < width; ++x) {

@@ -7,6 +7,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfThreading.h>
+#include <half.h>
 
 #include <algorithm>
 #include <exception>
@@ -56,8 +57,8 @@ Image ReadExr(const std::string& path) {
     const int height = window.max.y - window.min.y + 1;
     CheckImageSize(width, height, path);
     const Imf::ChannelList& channels = file.header().channels();
-    const bool has_rgb = channels.findChannel("R") || channels.findChannel("G") ||
-                         channels.findChannel("B");
+    const bool has_rgb =
+        channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
     const bool has_y = channels.findChannel("Y") != nullptr;
     if (!has_rgb && !has_y) throw InputError(path, "no R, G, B or Y channel to read");
 
@@ -100,10 +101,22 @@ void WriteExr(const std::string& path, const Image& image, ExrPixelType type) {
       }
       Imf::OutputFile file(temporary.c_str(), header);
       Imf::FrameBuffer frame;
-      Image& pixels = const_cast<Image&>(image);  // OpenEXR's Slice takes char*; read only
       const char* names[] = {"R", "G", "B", "A"};
-      for (int c = 0; c < Image::kChannels; ++c) {
-        frame.insert(names[c], FloatSlice(&pixels, c, 0, 0, 0.0));
+      // OpenEXR converts types when reading but not when writing: a half file needs a half
+      // frame buffer.
+      std::vector<half> halves;
+      if (type == ExrPixelType::kHalf) {
+        halves.assign(image.rgba.begin(), image.rgba.end());
+        const size_t x_stride = sizeof(half) * Image::kChannels;
+        for (int c = 0; c < Image::kChannels; ++c) {
+          frame.insert(names[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data() + c),
+                                            x_stride, x_stride * image.width));
+        }
+      } else {
+        Image& pixels = const_cast<Image&>(image);  // OpenEXR's Slice takes char*; read only
+        for (int c = 0; c < Image::kChannels; ++c) {
+          frame.insert(names[c], FloatSlice(&pixels, c, 0, 0, 0.0));
+        }
       }
       file.setFrameBuffer(frame);
       file.writePixels(image.height);

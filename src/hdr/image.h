@@ -32,8 +32,9 @@ inline float PixelLuminance(const float* rgb) {
   return 0.2126f * rgb[0] + 0.7152f * rgb[1] + 0.0722f * rgb[2];
 }
 
-// Counts the pixels with a NaN or infinite channel and sets those channels to 0, so that a
-// broken input never reaches the tone mapper (whose log-average a single NaN would poison).
+// Counts the pixels with a NaN or infinite channel and makes them black (RGB 0; a broken
+// alpha becomes 1), so that a broken input never reaches the tone mapper, whose log-average a
+// single NaN would poison.
 int64_t ReplaceNonFinite(Image* image);
 
 // Throws UsageError unless 0 < width, height <= 65536 (`what` names the option or file).

@@ -31,8 +31,9 @@ void ToneOptions::Validate() const {
 std::string ToneResult::Summary() const {
   char buffer[256];
   std::string text;
-  std::snprintf(buffer, sizeof(buffer), "%dx%d, log-average luminance %.4g, max %.4g, exposure %.4g",
-                display.width, display.height, scene.log_average, scene.max, exposure);
+  std::snprintf(buffer, sizeof(buffer),
+                "%dx%d, log-average luminance %.4g, max %.4g, exposure %.4g", display.width,
+                display.height, scene.log_average, scene.max, exposure);
   text = buffer;
   text += std::string(", ") + ToneOperatorName(mapping.tone_operator);
   if (mapping.tone_operator == ToneOperator::kReinhardExtended) {
@@ -70,8 +71,8 @@ ToneResult RunTonePipeline(Image image, const ToneOptions& options) {
   ApplyExposure(&image, result.exposure);
 
   if (options.bloom != BlurKind::kNone && options.bloom_strength > 0.0) {
-    const Image bloom = Blur(BrightPass(image, options.bloom_threshold), options.bloom,
-                             options.bloom_sigma);
+    const Image bloom =
+        Blur(BrightPass(image, options.bloom_threshold), options.bloom, options.bloom_sigma);
     AddBloom(&image, bloom, options.bloom_strength);
     result.bloom_sigma = DesignedSigma(options.bloom, options.bloom_sigma);
   }
@@ -80,8 +81,8 @@ ToneResult RunTonePipeline(Image image, const ToneOptions& options) {
   // bloom); the other operators need none.
   const bool reinhard = options.tone_operator == ToneOperator::kReinhard ||
                         options.tone_operator == ToneOperator::kReinhardExtended;
-  const SceneLuminance mapped = reinhard ? MeasureSceneLuminance(image, options.delta)
-                                         : SceneLuminance{};
+  const SceneLuminance mapped =
+      reinhard ? MeasureSceneLuminance(image, options.delta) : SceneLuminance{};
   result.mapping = PlanToneMapping(options.tone_operator, mapped, options.key, options.white);
   ApplyToneMapping(&image, result.mapping);
   result.display = EncodeDisplay(image, options.transfer);

@@ -20,9 +20,9 @@ struct ToneOptions {
   ToneOperator tone_operator = ToneOperator::kReinhardExtended;
   // Multiplier applied first; unset = automatic (log-average luminance -> `key`).
   std::optional<double> exposure;
-  double key = 0.18;     // Reinhard's a, "middle grey"
-  double delta = 1e-4;   // Reinhard's delta in the log-average
-  double white = 0.0;    // L_white in key-scaled units; <= 0 = the scene maximum
+  double key = 0.18;    // Reinhard's a, "middle grey"
+  double delta = 1e-4;  // Reinhard's delta in the log-average
+  double white = 0.0;   // L_white in key-scaled units; <= 0 = the scene maximum
   BlurKind bloom = BlurKind::kNone;
   double bloom_threshold = 1.0;  // luminance after exposure
   double bloom_strength = 0.1;
