@@ -17,5 +17,6 @@ Command AddInfoCommand(CLI::App& parent);
 Command AddConvertCommand(CLI::App& parent);
 Command AddDemoCommand(CLI::App& parent);
 Command AddTonemapCommand(CLI::App& parent);
+Command AddRenderCommand(CLI::App& parent);
 
 }  // namespace brdf::cli

@@ -13,9 +13,8 @@ int main(int argc, char** argv) {
   app.footer("Run 'brdf COMMAND --help' for the options of each command.");
 
   const std::vector<brdf::cli::Command> commands = {
-      brdf::cli::AddDemoCommand(app),
-      brdf::cli::AddInfoCommand(app),
-      brdf::cli::AddConvertCommand(app),
+      brdf::cli::AddDemoCommand(app),    brdf::cli::AddInfoCommand(app),
+      brdf::cli::AddConvertCommand(app), brdf::cli::AddRenderCommand(app),
       brdf::cli::AddTonemapCommand(app),
   };
 

@@ -1,0 +1,73 @@
+// `brdf render` end to end: models, fit reports and measurements become PNG and EXR; bad
+// input exits 2 with one line naming the culprit and leaves nothing behind.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+
+#include "hdr/image_files.h"
+#include "test_util.h"
+
+namespace brdf {
+namespace {
+
+using testing::DataPath;
+using testing::RunBrdf;
+using testing::ScratchDir;
+
+TEST(RenderCli, ModelUnderPresetAndEnvironmentWritesPngAndExr) {
+  ScratchDir dir;
+  const testing::CommandResult result =
+      RunBrdf("render 'blinn-phong:rho_d=0.5,0.1,0.1:rho_s=0.04:m=200' --preset sunny --env '" +
+              DataPath("hdr/venice_sunset_1k.hdr") + "' --size 64 --spp 8 --bloom dual --out '" +
+              dir.File("a.png") + "' --exr '" + dir.File("a.exr") + "' --quiet");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const cv::Mat png = cv::imread(dir.File("a.png"), cv::IMREAD_COLOR);
+  ASSERT_EQ(png.rows, 64);
+  const Image exr = ReadExr(dir.File("a.exr"));
+  ASSERT_EQ(exr.width, 64);
+  // Radiometric units: a diffuse albedo of 0.5 under 20 000 lx (29 W/m^2 at 683 lm/W) gives
+  // about 0.5/pi * 29 ~ 4.7 W/m^2/sr where the light falls square on.
+  float largest = 0.0f;
+  for (int64_t i = 0; i < exr.pixel_count(); ++i) largest = std::max(largest, exr.rgba[i * 4]);
+  EXPECT_GT(largest, 3.0f);
+  EXPECT_LT(largest, 100.0f);
+  EXPECT_EQ(exr.pixel(0, 0)[3], 0.0f);    // background
+  EXPECT_EQ(exr.pixel(32, 32)[3], 1.0f);  // sphere
+  EXPECT_EQ(dir.CountEntries(), 2);
+}
+
+TEST(RenderCli, MeasurementsRenderThroughInterpolation) {
+  ScratchDir dir;
+  const testing::CommandResult result =
+      RunBrdf("render '" + DataPath("cornell-astm/cayman.astm") + "' --size 48 --out '" +
+              dir.File("c.png") + "' --quiet");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_FALSE(cv::imread(dir.File("c.png")).empty());
+}
+
+TEST(RenderCli, BadInputExitsTwoWithOneLineNamingTheCulprit) {
+  ScratchDir dir;
+  const std::string out = dir.File("out.png");
+  const std::string broken_env = dir.Write("broken.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"lambert --size 0", "--size"},
+      {"lambert --size -5", "--size"},
+      {"lambert --spp 0", "--spp"},
+      {"'" + dir.File("missing.binary") + "'", dir.File("missing.binary")},
+      {"lambert --env '" + dir.File("missing.exr") + "'", dir.File("missing.exr")},
+      {"lambert --env '" + broken_env + "'", broken_env},
+      {"lambert --light dir:theta=10:lumens=4", "dir:theta=10:lumens=4"},
+      {"lambert --preset disco", "disco"},
+  };
+  for (const auto& [arguments, culprit] : cases) {
+    const testing::CommandResult result = RunBrdf("render " + arguments + " --out '" + out + "'");
+    EXPECT_EQ(result.exit_status, 2) << arguments;
+    EXPECT_EQ(testing::CountLines(result.err), 1) << arguments << ": " << result.err;
+    EXPECT_NE(result.err.find(culprit), std::string::npos) << arguments << ": " << result.err;
+  }
+  EXPECT_EQ(dir.CountEntries(), 1);  // only the broken input
+}
+
+}  // namespace
+}  // namespace brdf
