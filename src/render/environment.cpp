@@ -10,24 +10,15 @@
 #include "hdr/image_files.h"
 
 namespace brdf {
-namespace {
-
-// Index i with cdf[i] <= u < cdf[i + 1], skipping empty intervals.
-int FindInterval(const double* cdf, int count, double u) {
-  const double* upper = std::upper_bound(cdf + 1, cdf + count + 1, u);
-  return std::clamp(static_cast<int>(upper - cdf) - 1, 0, count - 1);
-}
-
-}  // namespace
-
-Environment::Environment(Image image) : image_(std::move(image)) {
-  const int width = image_.width, height = image_.height;
-  std::vector<double> weight(int64_t{width} * height);
+Environment::Environment(Image image) : width_(image.width), height_(image.height) {
+  const int width = width_, height = height_;
+  const int64_t count = int64_t{width} * height;
+  std::vector<double> weight(count);
   double total = 0.0;
   for (int r = 0; r < height; ++r) {
     const double sin_theta = std::sin(kPi * (r + 0.5) / height);
     for (int c = 0; c < width; ++c) {
-      const double luminance = std::max(0.0f, PixelLuminance(image_.pixel(c, r)));
+      const double luminance = std::max(0.0f, PixelLuminance(image.pixel(c, r)));
       weight[int64_t{r} * width + c] = luminance * sin_theta;
       total += luminance * sin_theta;
     }
@@ -41,22 +32,35 @@ Environment::Environment(Image image) : image_(std::move(image)) {
       total += sin_theta * width;
     }
   }
-  pixel_probability_.resize(weight.size());
-  for (size_t i = 0; i < weight.size(); ++i) pixel_probability_[i] = weight[i] / total;
-  marginal_cdf_.assign(height + 1, 0.0);
-  conditional_cdf_.assign(int64_t{height} * (width + 1), 0.0);
-  for (int r = 0; r < height; ++r) {
-    double* row_cdf = conditional_cdf_.data() + int64_t{r} * (width + 1);
-    for (int c = 0; c < width; ++c) {
-      row_cdf[c + 1] = row_cdf[c] + pixel_probability_[int64_t{r} * width + c];
-    }
-    const double row_probability = row_cdf[width];
-    marginal_cdf_[r + 1] = marginal_cdf_[r] + row_probability;
-    for (int c = 1; c <= width; ++c) {
-      row_cdf[c] = row_probability > 0.0 ? row_cdf[c] / row_probability : double(c) / width;
+  texels_.resize(count);
+  for (int64_t i = 0; i < count; ++i) {
+    for (int c = 0; c < 3; ++c) texels_[i].rgb[c] = image.rgba[i * Image::kChannels + c];
+    texels_[i].density_uv = static_cast<float>(weight[i] / total * count);
+  }
+
+  // Vose's construction: scaled probabilities count * p_i split into those below 1 ("small")
+  // and the rest; each small entry is topped up from a large one, which becomes its alias.
+  slots_.resize(count);
+  std::vector<double> scaled(count);
+  std::vector<uint32_t> small, large;
+  for (int64_t i = 0; i < count; ++i) {
+    scaled[i] = weight[i] / total * count;
+    (scaled[i] < 1.0 ? small : large).push_back(static_cast<uint32_t>(i));
+  }
+  while (!small.empty() && !large.empty()) {
+    const uint32_t less = small.back(), more = large.back();
+    small.pop_back();
+    slots_[less].keep = static_cast<float>(scaled[less]);
+    slots_[less].alias = more;
+    scaled[more] -= 1.0 - scaled[less];
+    if (scaled[more] < 1.0) {
+      large.pop_back();
+      small.push_back(more);
     }
   }
-  for (double& value : marginal_cdf_) value /= marginal_cdf_[height];
+  // What remains is 1 up to rounding.
+  for (uint32_t i : large) slots_[i] = {1.0f, i};
+  for (uint32_t i : small) slots_[i] = {1.0f, i};
 }
 
 Environment Environment::Uniform(const Rgb& radiance) {
@@ -92,52 +96,62 @@ Environment Environment::Load(const std::string& spec, int64_t* non_finite) {
 }
 
 void Environment::Locate(const Vec3& omega, int* row, int* column, double* sin_theta) const {
-  const double theta = std::acos(std::clamp(omega.y(), -1.0, 1.0));
+  const double cos_theta = std::clamp(omega.y(), -1.0, 1.0);
+  const double theta = std::acos(cos_theta);
   double phi = std::atan2(omega.x(), -omega.z());
   if (phi < 0.0) phi += 2.0 * kPi;
-  *row = std::clamp(static_cast<int>(theta / kPi * image_.height), 0, image_.height - 1);
-  *column = std::clamp(static_cast<int>(phi / (2.0 * kPi) * image_.width), 0, image_.width - 1);
-  *sin_theta = std::sin(theta);
+  *row = std::clamp(static_cast<int>(theta * (height_ / kPi)), 0, height_ - 1);
+  *column = std::clamp(static_cast<int>(phi * (width_ / (2.0 * kPi))), 0, width_ - 1);
+  *sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
 }
 
 Rgb Environment::Radiance(const Vec3& omega) const {
-  int row = 0, column = 0;
-  double sin_theta = 0.0;
-  Locate(omega, &row, &column, &sin_theta);
-  const float* rgba = image_.pixel(column, row);
-  return Rgb(rgba[0], rgba[1], rgba[2]);
+  double pdf = 0.0;
+  return RadianceAndPdf(omega, &pdf);
 }
 
 double Environment::Pdf(const Vec3& omega) const {
+  double pdf = 0.0;
+  RadianceAndPdf(omega, &pdf);
+  return pdf;
+}
+
+Rgb Environment::RadianceAndPdf(const Vec3& omega, double* pdf) const {
   int row = 0, column = 0;
   double sin_theta = 0.0;
   Locate(omega, &row, &column, &sin_theta);
-  if (sin_theta <= 0.0) return 0.0;
-  const double density_uv =
-      pixel_probability_[int64_t{row} * image_.width + column] * image_.width * image_.height;
-  return density_uv / (2.0 * kPi * kPi * sin_theta);
+  const Texel& texel = texels_[int64_t{row} * width_ + column];
+  *pdf = sin_theta > 0.0 ? texel.density_uv / (2.0 * kPi * kPi * sin_theta) : 0.0;
+  return Rgb(texel.rgb[0], texel.rgb[1], texel.rgb[2]);
 }
 
 Environment::Sample Environment::SampleDirection(double u1, double u2) const {
-  const int width = image_.width, height = image_.height;
-  const int row = FindInterval(marginal_cdf_.data(), height, u1);
-  const double row_width = marginal_cdf_[row + 1] - marginal_cdf_[row];
-  const double v = (row + (row_width > 0 ? (u1 - marginal_cdf_[row]) / row_width : 0.5)) / height;
-  const double* row_cdf = conditional_cdf_.data() + int64_t{row} * (width + 1);
-  const int column = FindInterval(row_cdf, width, u2);
-  const double column_width = row_cdf[column + 1] - row_cdf[column];
-  const double u =
-      (column + (column_width > 0 ? (u2 - row_cdf[column]) / column_width : 0.5)) / width;
+  const int width = width_, height = height_;
+  const int64_t count = int64_t{width} * height;
+  // u1 picks a slot; its leftover fraction, uniform in [0, 1), decides between the slot and
+  // its alias and, rescaled once more, places the point across the pixel.
+  const double slot_position = u1 * count;
+  const int64_t slot = std::min<int64_t>(static_cast<int64_t>(slot_position), count - 1);
+  double fraction = slot_position - slot;
+  int64_t pixel = slot;
+  const AliasSlot& entry = slots_[slot];
+  if (fraction < entry.keep) {
+    fraction /= entry.keep;
+  } else {
+    fraction = (fraction - entry.keep) / (1.0 - entry.keep);
+    pixel = entry.alias;
+  }
+  const int row = static_cast<int>(pixel / width), column = static_cast<int>(pixel % width);
+  const double u = (column + std::clamp(fraction, 0.0, 1.0)) / width;
+  const double v = (row + u2) / height;
 
-  const double theta = kPi * std::clamp(v, 0.0, 1.0), phi = 2.0 * kPi * u;
+  const double theta = kPi * v, phi = 2.0 * kPi * u;
   const double sin_theta = std::sin(theta);
   Sample sample;
   sample.direction = Vec3(sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi));
-  const float* rgba = image_.pixel(column, row);
-  sample.radiance = Rgb(rgba[0], rgba[1], rgba[2]);
-  sample.pdf = sin_theta > 0.0 ? pixel_probability_[int64_t{row} * width + column] * width *
-                                     height / (2.0 * kPi * kPi * sin_theta)
-                               : 0.0;
+  const Texel& texel = texels_[pixel];
+  sample.radiance = Rgb(texel.rgb[0], texel.rgb[1], texel.rgb[2]);
+  sample.pdf = sin_theta > 0.0 ? texel.density_uv / (2.0 * kPi * kPi * sin_theta) : 0.0;
   return sample;
 }
 

@@ -106,9 +106,11 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
           const double pdf_cosine = CosineHemispherePdf(wi_cosine.z());
           if (pdf_cosine > 0.0) {
             const Vec3 world = frame.ToWorld(wi_cosine);
-            const double weight = PowerHeuristic(pdf_cosine, environment->Pdf(world));
-            estimate += FiniteOrZero(material.Eval(wi_cosine, wo), &row_missing) *
-                        environment->Radiance(world) * (wi_cosine.z() * weight / pdf_cosine);
+            double pdf_light = 0.0;
+            const Rgb radiance_in = environment->RadianceAndPdf(world, &pdf_light);
+            const double weight = PowerHeuristic(pdf_cosine, pdf_light);
+            estimate += FiniteOrZero(material.Eval(wi_cosine, wo), &row_missing) * radiance_in *
+                        (wi_cosine.z() * weight / pdf_cosine);
           }
           sum += estimate;
           const double luminance = Luminance(estimate);
