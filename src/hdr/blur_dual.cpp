@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "core/errors.h"
 #include "hdr/blur.h"
@@ -59,42 +60,61 @@ Stencil<5> UpStencil(bool odd_x, bool odd_y) {
   return s;
 }
 
+// The non-zero taps of a stencil as (row offset, column offset, weight).
+struct Tap {
+  int dy, dx;
+  float weight;
+};
 template <int N>
-void ApplyStencil(const Image& source, const Stencil<N>& s, int base_x, int base_y, float* out) {
-  float sum[kC] = {0, 0, 0, 0};
+std::vector<Tap> Taps(const Stencil<N>& s) {
+  std::vector<Tap> taps;
   for (int row = 0; row < N; ++row) {
-    const int y = std::clamp(base_y + s.first + row, 0, source.height - 1);
-    const float* line = source.pixel(0, y);
     for (int column = 0; column < N; ++column) {
-      const float w = s.weight[row][column];
-      if (w == 0.0f) continue;
-      const float* p = line + std::clamp(base_x + s.first + column, 0, source.width - 1) * kC;
-      for (int c = 0; c < kC; ++c) sum[c] += w * p[c];
+      if (s.weight[row][column] != 0.0f) {
+        taps.push_back({s.first + row, s.first + column, s.weight[row][column]});
+      }
     }
+  }
+  return taps;
+}
+
+// Weighted sum of source pixels around (base_x, base_y); `inside` says that no tap leaves the
+// image, so the clamps (the edge rule) can be skipped.
+void ApplyTaps(const Image& source, const std::vector<Tap>& taps, int base_x, int base_y,
+               bool inside, float* out) {
+  float sum[kC] = {0, 0, 0, 0};
+  for (const Tap& tap : taps) {
+    const int y = inside ? base_y + tap.dy : std::clamp(base_y + tap.dy, 0, source.height - 1);
+    const int x = inside ? base_x + tap.dx : std::clamp(base_x + tap.dx, 0, source.width - 1);
+    const float* p = source.pixel(x, y);
+    for (int c = 0; c < kC; ++c) sum[c] += tap.weight * p[c];
   }
   for (int c = 0; c < kC; ++c) out[c] = sum[c];
 }
 
 Image Down(const Image& source) {
-  static const Stencil<4> stencil = DownStencil();
+  static const std::vector<Tap> taps = Taps(DownStencil());
   Image result((source.width + 1) / 2, (source.height + 1) / 2);
   tbb::parallel_for(0, result.height, [&](int y) {
+    const bool row_inside = 2 * y - 1 >= 0 && 2 * y + 2 < source.height;
     for (int x = 0; x < result.width; ++x) {
-      ApplyStencil(source, stencil, 2 * x, 2 * y, result.pixel(x, y));
+      const bool inside = row_inside && 2 * x - 1 >= 0 && 2 * x + 2 < source.width;
+      ApplyTaps(source, taps, 2 * x, 2 * y, inside, result.pixel(x, y));
     }
   });
   return result;
 }
 
 Image Up(const Image& source, int width, int height) {
-  static const std::array<Stencil<5>, 4> stencils = {UpStencil(false, false),
-                                                     UpStencil(true, false), UpStencil(false, true),
-                                                     UpStencil(true, true)};
+  static const std::array<std::vector<Tap>, 4> taps = {
+      Taps(UpStencil(false, false)), Taps(UpStencil(true, false)), Taps(UpStencil(false, true)),
+      Taps(UpStencil(true, true))};
   Image result(width, height);
   tbb::parallel_for(0, height, [&](int y) {
+    const bool row_inside = y / 2 - 2 >= 0 && y / 2 + 2 < source.height;
     for (int x = 0; x < width; ++x) {
-      const Stencil<5>& s = stencils[(x & 1) + 2 * (y & 1)];
-      ApplyStencil(source, s, x / 2, y / 2, result.pixel(x, y));
+      const bool inside = row_inside && x / 2 - 2 >= 0 && x / 2 + 2 < source.width;
+      ApplyTaps(source, taps[(x & 1) + 2 * (y & 1)], x / 2, y / 2, inside, result.pixel(x, y));
     }
   });
   return result;

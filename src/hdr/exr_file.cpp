@@ -96,6 +96,9 @@ void WriteExr(const std::string& path, const Image& image, ExrPixelType type) {
     try {
       Imf::Header header(image.width, image.height);
       header.compression() = Imf::ZIP_COMPRESSION;
+      // zlib level 1: a preview is written once and read rarely; the default level 6 costs
+      // several times the time for a few percent of size on noisy HDR data.
+      header.zipCompressionLevel() = 1;
       for (const char* name : {"R", "G", "B", "A"}) {
         header.channels().insert(name, Imf::Channel(pixel_type));
       }

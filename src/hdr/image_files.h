@@ -17,7 +17,7 @@ enum class ExrPixelType { kHalf, kFloat };
 // Reads the R, G, B (or luminance-only Y) and A channels of a scan-line or tiled OpenEXR file
 // as float; a missing channel reads as 0 (A as 1).
 Image ReadExr(const std::string& path);
-// Writes R, G, B, A with ZIP compression (lossless) in half or float.
+// Writes R, G, B, A with ZIP compression (lossless, zlib level 1) in half or float.
 void WriteExr(const std::string& path, const Image& image, ExrPixelType type);
 
 // Reads a Radiance RGBE file (`#?RADIANCE`, run-length encoded or flat) as linear float RGB,

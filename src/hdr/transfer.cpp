@@ -52,13 +52,14 @@ Quantizer8::Quantizer8(const TransferCurve& curve) {
   for (int k = 0; k < 255; ++k) {
     thresholds_[k] = static_cast<float>(curve.Decode((k + 0.5) / 255.0));
   }
-}
-
-uint8_t Quantizer8::operator()(float linear) const {
-  if (!(linear > 0.0f)) return 0;  // also NaN, which would otherwise compare past the end
-  // Number of thresholds at or below `linear`.
-  return static_cast<uint8_t>(std::upper_bound(thresholds_.begin(), thresholds_.end(), linear) -
-                              thresholds_.begin());
+  for (int bucket = 0; bucket < kBuckets; ++bucket) {
+    const uint32_t bits = static_cast<uint32_t>(bucket) << kBucketShift;
+    float lower;
+    std::memcpy(&lower, &bits, sizeof(lower));
+    // Number of thresholds at or below the bucket's smallest value.
+    bucket_start_[bucket] = static_cast<uint8_t>(
+        std::upper_bound(thresholds_.begin(), thresholds_.end(), lower) - thresholds_.begin());
+  }
 }
 
 }  // namespace brdf

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 namespace brdf {
@@ -25,14 +26,28 @@ double SrgbDecode(double encoded);
 
 // Encodes with a transfer curve and rounds to 8 bits: round(255 * Encode(x)) for x in [0, 1]
 // (clipped outside). Exact and fast: the 255 linear values where the rounded code changes,
-// Decode((k + 1/2) / 255), are precomputed and searched, so no power is taken per pixel.
+// Decode((k + 1/2) / 255), are precomputed, so no power is taken per pixel. A binary search
+// over them mispredicts a branch per level; instead the float's exponent and top 7 mantissa
+// bits index a table of the code at the start of that bucket (relative width 2^-7, so at most
+// a few codes further), and a short scan finishes.
 class Quantizer8 {
  public:
   explicit Quantizer8(const TransferCurve& curve);
-  uint8_t operator()(float linear) const;
+  uint8_t operator()(float linear) const {
+    if (!(linear > 0.0f)) return 0;  // also NaN
+    if (linear >= 1.0f) return 255;
+    uint32_t bits;
+    std::memcpy(&bits, &linear, sizeof(bits));
+    int code = bucket_start_[bits >> kBucketShift];
+    while (code < 255 && linear >= thresholds_[code]) ++code;
+    return static_cast<uint8_t>(code);
+  }
 
  private:
+  static constexpr int kBucketShift = 16;  // keeps sign, exponent and 7 mantissa bits
+  static constexpr int kBuckets = (0x3f800000 >> kBucketShift) + 1;  // floats in [0, 1]
   std::array<float, 255> thresholds_;  // code k + 1 starts at thresholds_[k]
+  std::array<uint8_t, kBuckets> bucket_start_;
 };
 
 }  // namespace brdf
