@@ -15,6 +15,25 @@ using testing::DataPath;
 using testing::RunBrdf;
 using testing::ScratchDir;
 
+TEST(RenderCli, HelpDocumentsEveryOptionWithItsDefault) {
+  for (const char* command : {"render", "tonemap"}) {
+    const testing::CommandResult result = RunBrdf(std::string(command) + " --help");
+    ASSERT_EQ(result.exit_status, 0) << command;
+    for (const char* option :
+         {"--operator", "--exposure", "--ev", "--key", "--white", "--bloom", "--bloom-threshold",
+          "--bloom-strength", "--bloom-sigma", "--gamma", "--out"}) {
+      EXPECT_NE(result.out.find(option), std::string::npos) << command << " " << option;
+    }
+    EXPECT_NE(result.out.find("reinhard-extended"), std::string::npos) << command;
+    EXPECT_NE(result.out.find("0.18"), std::string::npos) << command;
+  }
+  const std::string render = RunBrdf("render --help").out;
+  for (const char* option : {"--light", "--preset", "--env", "--size", "--spp", "--seed", "--exr",
+                             "100000 lx", "512", "64"}) {
+    EXPECT_NE(render.find(option), std::string::npos) << option;
+  }
+}
+
 TEST(RenderCli, ModelUnderPresetAndEnvironmentWritesPngAndExr) {
   ScratchDir dir;
   const testing::CommandResult result =
