@@ -4,6 +4,7 @@
 // counter), OpenEXR writing against OpenCV's, and the env-lit preview with noise vs spp.
 // Run through bench/hdr_bench.
 #include <benchmark/benchmark.h>
+#include <malloc.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -68,24 +69,33 @@ void BM_Stage_Exposure(benchmark::State& state) {
     benchmark::DoNotOptimize(image.rgba.data());
   }
 }
-BENCHMARK(BM_Stage_Exposure)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Stage_Exposure)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 void BM_Stage_SceneLuminance(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(MeasureSceneLuminance(Frame1080()));
 }
-BENCHMARK(BM_Stage_SceneLuminance)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Stage_SceneLuminance)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 void BM_Stage_BrightPass(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(BrightPass(Frame1080(), 1.0));
 }
-BENCHMARK(BM_Stage_BrightPass)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Stage_BrightPass)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 void BM_Stage_BloomBlurDual(benchmark::State& state) {
   const Image bright = BrightPass(Frame1080(), 1.0);
   for (auto _ : state) benchmark::DoNotOptimize(Blur(bright, BlurKind::kDual, kBloomSigma));
   state.counters["sigma_px"] = DesignedSigma(BlurKind::kDual, kBloomSigma);
 }
-BENCHMARK(BM_Stage_BloomBlurDual)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Stage_BloomBlurDual)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 void BM_Stage_AddBloom(benchmark::State& state) {
   Image image = Frame1080();
@@ -95,7 +105,7 @@ void BM_Stage_AddBloom(benchmark::State& state) {
     benchmark::DoNotOptimize(image.rgba.data());
   }
 }
-BENCHMARK(BM_Stage_AddBloom)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Stage_AddBloom)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 void BM_Stage_ToneMapReinhardExtended(benchmark::State& state) {
   const SceneLuminance scene = MeasureSceneLuminance(Frame1080());
@@ -106,7 +116,10 @@ void BM_Stage_ToneMapReinhardExtended(benchmark::State& state) {
     benchmark::DoNotOptimize(image.rgba.data());
   }
 }
-BENCHMARK(BM_Stage_ToneMapReinhardExtended)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Stage_ToneMapReinhardExtended)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 void BM_Stage_SrgbEncode8(benchmark::State& state) {
   Image image = Frame1080();
@@ -114,7 +127,10 @@ void BM_Stage_SrgbEncode8(benchmark::State& state) {
                                            MeasureSceneLuminance(image), 0.18, 0.0));
   for (auto _ : state) benchmark::DoNotOptimize(EncodeDisplay(image, TransferCurve{}));
 }
-BENCHMARK(BM_Stage_SrgbEncode8)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Stage_SrgbEncode8)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 void BM_Pipeline_Total(benchmark::State& state) {
   ToneOptions options;
@@ -125,7 +141,7 @@ void BM_Pipeline_Total(benchmark::State& state) {
     benchmark::DoNotOptimize(RunTonePipeline(std::move(copy), options));
   }
 }
-BENCHMARK(BM_Pipeline_Total)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Pipeline_Total)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 void BM_OpenCV_TonemapReinhard(benchmark::State& state) {
   const cv::Ptr<cv::TonemapReinhard> tonemap = cv::createTonemapReinhard();
@@ -135,7 +151,10 @@ void BM_OpenCV_TonemapReinhard(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data);
   }
 }
-BENCHMARK(BM_OpenCV_TonemapReinhard)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OpenCV_TonemapReinhard)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 // The bloom stage written with OpenCV: bright pass (luminance threshold), GaussianBlur at the
 // sigma the dual filter really has, weighted add.
@@ -153,7 +172,10 @@ void BM_OpenCV_GaussianBloom(benchmark::State& state) {
   }
   state.counters["sigma_px"] = sigma;
 }
-BENCHMARK(BM_OpenCV_GaussianBloom)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OpenCV_GaussianBloom)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 // --- Blurs at equal sigma ----------------------------------------------------------------
 
@@ -192,6 +214,7 @@ BENCHMARK(BM_Blur)
                     static_cast<int>(BlurKind::kKawase), static_cast<int>(BlurKind::kDual)},
                    {2, 4, 8, 16}})
     ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
     ->UseRealTime();
 
 // --- OpenEXR ------------------------------------------------------------------------------
@@ -206,7 +229,7 @@ void BM_WriteExrHalf(benchmark::State& state) {
   state.counters["bytes"] = static_cast<double>(std::filesystem::file_size(path));
   std::filesystem::remove(path);
 }
-BENCHMARK(BM_WriteExrHalf)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_WriteExrHalf)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 void BM_OpenCV_ImwriteExrHalf(benchmark::State& state) {
   const std::string path = TemporaryPath("brdfkit-bench-opencv.exr");
@@ -219,7 +242,10 @@ void BM_OpenCV_ImwriteExrHalf(benchmark::State& state) {
     std::filesystem::remove(path);
   }
 }
-BENCHMARK(BM_OpenCV_ImwriteExrHalf)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_OpenCV_ImwriteExrHalf)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 // --- The env-lit preview ------------------------------------------------------------------
 
@@ -245,6 +271,7 @@ void BM_RenderEnvironment(benchmark::State& state) {
 BENCHMARK(BM_RenderEnvironment)
     ->Args({512, 64})
     ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
     ->UseRealTime()
     ->Iterations(1);
 
@@ -282,6 +309,7 @@ BENCHMARK(BM_RenderNoise)
     ->Arg(64)
     ->Arg(256)
     ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
     ->UseRealTime()
     ->Iterations(1);
 
@@ -289,6 +317,9 @@ BENCHMARK(BM_RenderNoise)
 }  // namespace brdf
 
 int main(int argc, char** argv) {
+  // As in the brdf executable (src/cli/main.cpp): large image buffers are reused, not remapped.
+  mallopt(M_MMAP_THRESHOLD, 1 << 30);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
   // Debian's OpenCV reads and writes OpenEXR only when asked to.
   setenv("OPENCV_IO_ENABLE_OPENEXR", "1", 1);
   benchmark::Initialize(&argc, argv);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "core/errors.h"
 
@@ -52,13 +53,22 @@ Quantizer8::Quantizer8(const TransferCurve& curve) {
   for (int k = 0; k < 255; ++k) {
     thresholds_[k] = static_cast<float>(curve.Decode((k + 0.5) / 255.0));
   }
+  thresholds_[255] = std::numeric_limits<float>::infinity();
+  // Number of thresholds at or below a value (a binary search, fine once per bucket).
+  const auto codes_below = [&](float value) {
+    return static_cast<int>(
+        std::upper_bound(thresholds_.begin(), thresholds_.begin() + 255, value) -
+        thresholds_.begin());
+  };
   for (int bucket = 0; bucket < kBuckets; ++bucket) {
-    const uint32_t bits = static_cast<uint32_t>(bucket) << kBucketShift;
-    float lower;
-    std::memcpy(&lower, &bits, sizeof(lower));
-    // Number of thresholds at or below the bucket's smallest value.
-    bucket_start_[bucket] = static_cast<uint8_t>(
-        std::upper_bound(thresholds_.begin(), thresholds_.end(), lower) - thresholds_.begin());
+    const uint32_t first_bits = static_cast<uint32_t>(bucket) << kBucketShift;
+    const uint32_t last_bits = first_bits + (1u << kBucketShift) - 1;
+    float first, last;
+    std::memcpy(&first, &first_bits, sizeof(first));
+    std::memcpy(&last, &last_bits, sizeof(last));
+    bucket_start_[bucket] = static_cast<uint8_t>(codes_below(first));
+    max_codes_per_bucket_ =
+        std::max(max_codes_per_bucket_, codes_below(std::min(last, 1.0f)) - codes_below(first));
   }
 }
 

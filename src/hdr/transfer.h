@@ -29,7 +29,7 @@ double SrgbDecode(double encoded);
 // Decode((k + 1/2) / 255), are precomputed, so no power is taken per pixel. A binary search
 // over them mispredicts a branch per level; instead the float's exponent and top 7 mantissa
 // bits index a table of the code at the start of that bucket (relative width 2^-7, so at most
-// a few codes further), and a short scan finishes.
+// a few codes further), and a fixed, branch-free number of comparisons finishes.
 class Quantizer8 {
  public:
   explicit Quantizer8(const TransferCurve& curve);
@@ -39,15 +39,18 @@ class Quantizer8 {
     uint32_t bits;
     std::memcpy(&bits, &linear, sizeof(bits));
     int code = bucket_start_[bits >> kBucketShift];
-    while (code < 255 && linear >= thresholds_[code]) ++code;
+    // A fixed number of steps without branches (a data-dependent loop exit mispredicts).
+    for (int step = 0; step < max_codes_per_bucket_; ++step) code += linear >= thresholds_[code];
     return static_cast<uint8_t>(code);
   }
 
  private:
   static constexpr int kBucketShift = 16;  // keeps sign, exponent and 7 mantissa bits
   static constexpr int kBuckets = (0x3f800000 >> kBucketShift) + 1;  // floats in [0, 1]
-  std::array<float, 255> thresholds_;  // code k + 1 starts at thresholds_[k]
+  // Code k + 1 starts at thresholds_[k]; thresholds_[255] = infinity stops the count at 255.
+  std::array<float, 256> thresholds_;
   std::array<uint8_t, kBuckets> bucket_start_;
+  int max_codes_per_bucket_ = 0;  // most code changes inside one bucket
 };
 
 }  // namespace brdf
