@@ -90,3 +90,33 @@ TEST(RenderCli, BadInputExitsTwoWithOneLineNamingTheCulprit) {
 
 }  // namespace
 }  // namespace brdf
+
+namespace brdf {
+namespace {
+
+TEST(RenderCli, VersusSheetShowsTheRelativeError) {
+  ScratchDir dir;
+  // Twice the albedo: |A - B| / B = 1 on every pixel; the light comes from the viewer, so
+  // every sphere pixel is lit.
+  const testing::CommandResult result = RunBrdf(
+      "render lambert:rho_d=0.5 --vs lambert:rho_d=0.25 --light dir:theta=0:lux=1000 "
+      "--size 80 --out '" +
+      dir.File("sheet.png") + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_NE(result.out.find("mean 1, max 1"), std::string::npos) << result.out;
+  const cv::Mat sheet = cv::imread(dir.File("sheet.png"), cv::IMREAD_COLOR);
+  ASSERT_FALSE(sheet.empty());
+  EXPECT_GT(sheet.cols, 3 * 80);  // A, B, error map, colour bar
+  EXPECT_GT(sheet.rows, 80);      // plus the label row
+  // A is brighter than B at the same place: one tone mapping for both.
+  const int row = sheet.rows - 40, column = 40;
+  EXPECT_GT(cv::sum(sheet.at<cv::Vec3b>(row, column))[0],
+            cv::sum(sheet.at<cv::Vec3b>(row, column + 80))[0]);
+
+  const testing::CommandResult same =
+      RunBrdf("render phong --vs phong --size 40 --quiet --out '" + dir.File("same.png") + "'");
+  EXPECT_EQ(same.exit_status, 0) << same.err;
+}
+
+}  // namespace
+}  // namespace brdf

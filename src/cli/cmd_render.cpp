@@ -1,6 +1,7 @@
 // brdf render MODEL|FIT.json|FILE [--light ...]... [--preset NAME] [--env SPEC] [--size N]
 // [--spp N] [--seed N] [--exr OUT.exr] --out OUT.png [tone options]: a preview sphere through
 // the HDR pipeline (DESIGN §8).
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -10,6 +11,7 @@
 #include "core/progress.h"
 #include "hdr/image_files.h"
 #include "hdr/pipeline.h"
+#include "render/comparison_sheet.h"
 #include "render/sphere.h"
 
 namespace brdf::cli {
@@ -26,11 +28,35 @@ std::string PresetHelp() {
   return text + "; default office when no light, preset or environment is given";
 }
 
+// Two previews side by side in one image, so that one pipeline run maps both identically.
+Image SideBySide(const Image& a, const Image& b) {
+  Image both(a.width + b.width, a.height, 0.0f);
+  for (int y = 0; y < a.height; ++y) {
+    std::copy(a.pixel(0, y), a.pixel(0, y) + int64_t{a.width} * Image::kChannels, both.pixel(0, y));
+    std::copy(b.pixel(0, y), b.pixel(0, y) + int64_t{b.width} * Image::kChannels,
+              both.pixel(a.width, y));
+  }
+  return both;
+}
+
+// Columns [first, first + width) of an 8-bit image.
+Image8 Columns(const Image8& image, int first, int width) {
+  Image8 part;
+  part.width = width;
+  part.height = image.height;
+  part.rgb.resize(int64_t{width} * image.height * 3);
+  for (int y = 0; y < image.height; ++y) {
+    const uint8_t* row = image.rgb.data() + (int64_t{y} * image.width + first) * 3;
+    std::copy(row, row + int64_t{width} * 3, part.rgb.data() + int64_t{y} * width * 3);
+  }
+  return part;
+}
+
 }  // namespace
 
 Command AddRenderCommand(CLI::App& parent) {
   struct Options {
-    std::string material, output, exr, exr_type = "half", env;
+    std::string material, output, exr, exr_type = "half", env, versus;
     std::vector<std::string> lights, presets;
     RenderOptions render;
     ToneArguments tone;
@@ -44,7 +70,11 @@ Command AddRenderCommand(CLI::App& parent) {
                   "formats nearest neighbour)")
       ->required();
   app->add_option("--out", options->output, "8-bit sRGB PNG to write")->required();
-  app->add_option("--exr", options->exr, "also write the radiance (W/m^2/sr) as OpenEXR");
+  app->add_option("--vs", options->versus,
+                  "a second material (e.g. the fit of a measurement) rendered under the same "
+                  "light: --out becomes a sheet A | B | relative error map | colour bar");
+  app->add_option("--exr", options->exr,
+                  "also write the radiance (W/m^2/sr) as OpenEXR (of MATERIAL, with --vs)");
   app->add_option("--exr-type", options->exr_type, "OpenEXR pixel type: half or float")
       ->capture_default_str();
   app->add_option("--light", options->lights,
@@ -88,29 +118,49 @@ Command AddRenderCommand(CLI::App& parent) {
         }
         if (lights.empty() && !environment) lights.push_back(PresetLight("office"));
         const std::unique_ptr<Material> material = LoadMaterial(options->material);
+        const std::unique_ptr<Material> versus =
+            options->versus.empty() ? nullptr : LoadMaterial(options->versus);
 
-        RenderResult render;
+        RenderResult render, render_versus;
         {
-          Progress progress("render", options->render.size, options->quiet);
-          render = RenderSphere(*material, lights, environment ? &*environment : nullptr,
-                                options->render, &progress);
+          Progress progress("render", options->render.size * (versus ? 2 : 1), options->quiet);
+          const Environment* lighting = environment ? &*environment : nullptr;
+          render = RenderSphere(*material, lights, lighting, options->render, &progress);
+          if (versus) {
+            render_versus = RenderSphere(*versus, lights, lighting, options->render, &progress);
+          }
         }
         if (!options->exr.empty()) {
           WriteExr(options->exr, render.radiance,
                    options->exr_type == "half" ? ExrPixelType::kHalf : ExrPixelType::kFloat);
         }
-        const ToneResult toned = RunTonePipeline(render.radiance, tone);
-        WritePng(options->output, toned.display);
-        if (render.missing_lookups > 0) {
-          std::cerr << "brdf render: warning: " << options->material << ": "
-                    << render.missing_lookups
-                    << " lookups fell on missing data and were rendered black\n";
+        std::string comparison;
+        ToneResult toned;
+        if (versus) {
+          toned = RunTonePipeline(SideBySide(render.radiance, render_versus.radiance), tone);
+          const int size = options->render.size;
+          const ComparisonSheet sheet = MakeComparisonSheet(
+              Columns(toned.display, 0, size), Columns(toned.display, size, size), render.radiance,
+              render_versus.radiance, material->Describe(), versus->Describe());
+          WritePng(options->output, sheet.sheet);
+          comparison = "; " + sheet.Summary();
+        } else {
+          toned = RunTonePipeline(render.radiance, tone);
+          WritePng(options->output, toned.display);
+        }
+        for (const auto& [name, result] :
+             {std::pair<const std::string&, const RenderResult&>(options->material, render),
+              {options->versus, render_versus}}) {
+          if (result.missing_lookups > 0) {
+            std::cerr << "brdf render: warning: " << name << ": " << result.missing_lookups
+                      << " lookups fell on missing data and were rendered black\n";
+          }
         }
         if (!options->quiet) {
           std::cout << "wrote " << options->output
                     << (options->exr.empty() ? "" : " and " + options->exr) << ": "
                     << material->Describe() << "; " << render.Summary() << "; " << toned.Summary()
-                    << "\n";
+                    << comparison << "\n";
         }
         return 0;
       }};

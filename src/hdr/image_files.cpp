@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
@@ -31,16 +32,9 @@ Image ReadHdrImage(const std::string& path) {
 void WritePng(const std::string& path, const Image8& image) {
   CheckImageSize(image.width, image.height, path);
   // OpenCV stores colour as BGR.
-  cv::Mat bgr(image.height, image.width, CV_8UC3);
-  for (int y = 0; y < image.height; ++y) {
-    const uint8_t* rgb = image.rgb.data() + int64_t{y} * image.width * 3;
-    uint8_t* out = bgr.ptr<uint8_t>(y);
-    for (int x = 0; x < image.width; ++x) {
-      out[3 * x + 0] = rgb[3 * x + 2];
-      out[3 * x + 1] = rgb[3 * x + 1];
-      out[3 * x + 2] = rgb[3 * x + 0];
-    }
-  }
+  const cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<uint8_t*>(image.rgb.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
   std::vector<uchar> bytes;
   if (!cv::imencode(".png", bgr, bytes)) throw OutputError(path, "PNG encoding failed");
   WriteFileAtomically(
