@@ -225,15 +225,26 @@ std::string TemporaryPath(const std::string& name) {
 
 void BM_WriteExrHalf(benchmark::State& state) {
   const std::string path = TemporaryPath("brdfkit-bench-half.exr");
-  for (auto _ : state) WriteExr(path, Frame1080(), ExrPixelType::kHalf);
+  const ExrCompression compression = static_cast<ExrCompression>(state.range(0));
+  const char* names[] = {"zip", "piz", "rle", "none"};
+  state.SetLabel(names[state.range(0)]);
+  for (auto _ : state) WriteExr(path, Frame1080(), ExrPixelType::kHalf, compression);
   state.counters["bytes"] = static_cast<double>(std::filesystem::file_size(path));
   std::filesystem::remove(path);
 }
-BENCHMARK(BM_WriteExrHalf)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+BENCHMARK(BM_WriteExrHalf)
+    ->DenseRange(0, 3)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
+// OpenCV's writer with its default compression (zip) and with piz, for a like-for-like pair.
 void BM_OpenCV_ImwriteExrHalf(benchmark::State& state) {
   const std::string path = TemporaryPath("brdfkit-bench-opencv.exr");
-  const std::vector<int> flags = {cv::IMWRITE_EXR_TYPE, cv::IMWRITE_EXR_TYPE_HALF};
+  const int compression = static_cast<int>(state.range(0));
+  state.SetLabel(compression == cv::IMWRITE_EXR_COMPRESSION_ZIP ? "zip" : "piz");
+  const std::vector<int> flags = {cv::IMWRITE_EXR_TYPE, cv::IMWRITE_EXR_TYPE_HALF,
+                                  cv::IMWRITE_EXR_COMPRESSION, compression};
   for (auto _ : state) {
     if (!cv::imwrite(path, Frame1080Bgr(), flags)) state.SkipWithError("imwrite failed");
   }

@@ -56,7 +56,7 @@ Image8 Columns(const Image8& image, int first, int width) {
 
 Command AddRenderCommand(CLI::App& parent) {
   struct Options {
-    std::string material, output, exr, exr_type = "half", env, versus;
+    std::string material, output, exr, exr_type = "half", exr_compression = "piz", env, versus;
     std::vector<std::string> lights, presets;
     RenderOptions render;
     ToneArguments tone;
@@ -76,6 +76,9 @@ Command AddRenderCommand(CLI::App& parent) {
   app->add_option("--exr", options->exr,
                   "also write the radiance (W/m^2/sr) as OpenEXR (of MATERIAL, with --vs)");
   app->add_option("--exr-type", options->exr_type, "OpenEXR pixel type: half or float")
+      ->capture_default_str();
+  app->add_option("--exr-compression", options->exr_compression,
+                  "OpenEXR compression (lossless): piz, zip, rle or none")
       ->capture_default_str();
   app->add_option("--light", options->lights,
                   "directional light dir:theta=DEG:phi=DEG:lux=LX (or irradiance=W/m^2, "
@@ -99,6 +102,7 @@ Command AddRenderCommand(CLI::App& parent) {
       app, [options]() {
         options->render.Validate();
         const ToneOptions tone = options->tone.Resolve();
+        const ExrCompression exr_compression = ParseExrCompression(options->exr_compression);
         if (options->exr_type != "half" && options->exr_type != "float") {
           throw UsageError("--exr-type: expected half or float, got '" + options->exr_type + "'");
         }
@@ -132,7 +136,8 @@ Command AddRenderCommand(CLI::App& parent) {
         }
         if (!options->exr.empty()) {
           WriteExr(options->exr, render.radiance,
-                   options->exr_type == "half" ? ExrPixelType::kHalf : ExrPixelType::kFloat);
+                   options->exr_type == "half" ? ExrPixelType::kHalf : ExrPixelType::kFloat,
+                   exr_compression);
         }
         std::string comparison;
         ToneResult toned;

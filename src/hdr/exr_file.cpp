@@ -88,14 +88,36 @@ Image ReadExr(const std::string& path) {
   }
 }
 
-void WriteExr(const std::string& path, const Image& image, ExrPixelType type) {
+ExrCompression ParseExrCompression(const std::string& name) {
+  if (name == "zip") return ExrCompression::kZip;
+  if (name == "piz") return ExrCompression::kPiz;
+  if (name == "rle") return ExrCompression::kRle;
+  if (name == "none") return ExrCompression::kNone;
+  throw UsageError("unknown OpenEXR compression '" + name + "', expected zip, piz, rle or none");
+}
+
+void WriteExr(const std::string& path, const Image& image, ExrPixelType type,
+              ExrCompression compression) {
   CheckImageSize(image.width, image.height, path);
   UseAllCoresForExr();
   const Imf::PixelType pixel_type = type == ExrPixelType::kHalf ? Imf::HALF : Imf::FLOAT;
   WriteFileAtomicallyByName(path, [&](const std::string& temporary) {
     try {
       Imf::Header header(image.width, image.height);
-      header.compression() = Imf::ZIP_COMPRESSION;
+      switch (compression) {
+        case ExrCompression::kZip:
+          header.compression() = Imf::ZIP_COMPRESSION;
+          break;
+        case ExrCompression::kPiz:
+          header.compression() = Imf::PIZ_COMPRESSION;
+          break;
+        case ExrCompression::kRle:
+          header.compression() = Imf::RLE_COMPRESSION;
+          break;
+        case ExrCompression::kNone:
+          header.compression() = Imf::NO_COMPRESSION;
+          break;
+      }
       // zlib level 1: a preview is written once and read rarely; the default level 6 costs
       // several times the time for a few percent of size on noisy HDR data.
       header.zipCompressionLevel() = 1;
