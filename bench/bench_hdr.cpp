@@ -254,6 +254,8 @@ void BM_OpenCV_ImwriteExrHalf(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_OpenCV_ImwriteExrHalf)
+    ->Arg(cv::IMWRITE_EXR_COMPRESSION_ZIP)
+    ->Arg(cv::IMWRITE_EXR_COMPRESSION_PIZ)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
