@@ -1,7 +1,6 @@
 // The preview renderer against physics (DESIGN §8): the white furnace, directional lights
 // against f E cos(theta_i), importance sampling against its own pdf, determinism.
 #include <gtest/gtest.h>
-
 #include <tbb/global_control.h>
 
 #include <Eigen/Geometry>
