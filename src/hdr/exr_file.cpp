@@ -53,8 +53,14 @@ Image ReadExr(const std::string& path) {
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i window = file.header().dataWindow();
-    const int width = window.max.x - window.min.x + 1;
-    const int height = window.max.y - window.min.y + 1;
+    // In 64 bits: a hostile header's corners may be any int32.
+    const int64_t width64 = int64_t{window.max.x} - window.min.x + 1;
+    const int64_t height64 = int64_t{window.max.y} - window.min.y + 1;
+    if (width64 <= 0 || height64 <= 0 || width64 > 65536 || height64 > 65536) {
+      throw InputError(path, "data window " + std::to_string(width64) + "x" +
+                                 std::to_string(height64) + " is not a plausible image size");
+    }
+    const int width = static_cast<int>(width64), height = static_cast<int>(height64);
     CheckImageSize(width, height, path);
     const Imf::ChannelList& channels = file.header().channels();
     const bool has_rgb =

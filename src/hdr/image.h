@@ -37,7 +37,8 @@ inline float PixelLuminance(const float* rgb) {
 // single NaN would poison.
 int64_t ReplaceNonFinite(Image* image);
 
-// Throws UsageError unless 0 < width, height <= 65536 (`what` names the option or file).
+// Throws UsageError unless 0 < width, height <= 65536 and width * height <= 2^28 (`what`
+// names the option or file).
 void CheckImageSize(int width, int height, const std::string& what);
 
 }  // namespace brdf
