@@ -10,12 +10,15 @@
 #include "core/angles.h"
 #include "core/colour.h"
 #include "core/errors.h"
+#include "io/formats.h"
+#include "io/merl.h"
 #include "models/model_string.h"
 #include "render/environment.h"
 #include "render/lights.h"
 #include "render/material.h"
 #include "render/sampling.h"
 #include "render/sphere.h"
+#include "test_util.h"
 
 namespace brdf {
 namespace {
@@ -123,6 +126,48 @@ TEST(Render, SameSeedSameImageAnyThreadCountDifferentSeedDifferentNoise) {
   options.seed = 99;
   const RenderResult c = RenderSphere(*material, {}, &environment, options);
   EXPECT_NE(a.radiance.rgba, c.radiance.rgba);
+}
+
+// A Lambertian measurement, in the MERL layout and as scattered samples, renders like the
+// model it was made from: the interpolation schemes are exact for a constant BRDF.
+TEST(Render, MeasuredLambertRendersLikeTheModel) {
+  const Model lambert = ParseModel("lambert:rho_d=0.6,0.4,0.2");
+  const Rgb f = lambert.Eval(Vec3(0, 0, 1), Vec3(0, 0, 1));
+  testing::ScratchDir dir;
+  MerlTable table;
+  for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) {
+    for (int c = 0; c < 3; ++c) table.raw(c, cell) = f[c] / MerlTable::kScale[c];
+  }
+  table.Write(dir.File("lambert.binary"));
+  Measurement scattered;
+  scattered.format = "native-csv";
+  for (double theta_i : {0.1, 0.6, 1.2}) {
+    for (double theta_o : {0.2, 0.7, 1.3}) {
+      Sample sample;
+      sample.wi = SphericalDirection(theta_i, 0.0);
+      sample.wo = SphericalDirection(theta_o, 2.0);
+      sample.value = f;
+      scattered.samples.push_back(sample);
+    }
+  }
+  WriteMeasurement(scattered, dir.File("lambert.csv"));
+
+  RenderOptions options;
+  options.size = 32;
+  const std::vector<DirectionalLight> lights = {
+      ParseDirectionalLight("dir:theta=35:phi=120:irradiance=3")};
+  const RenderResult expected =
+      RenderSphere(*LoadMaterial(lambert.ToString()), lights, nullptr, options);
+  for (const std::string& file : {dir.File("lambert.binary"), dir.File("lambert.csv")}) {
+    const RenderResult measured = RenderSphere(*LoadMaterial(file), lights, nullptr, options);
+    EXPECT_EQ(measured.missing_lookups, 0) << file;
+    ASSERT_EQ(measured.radiance.rgba.size(), expected.radiance.rgba.size());
+    for (size_t i = 0; i < expected.radiance.rgba.size(); ++i) {
+      ASSERT_NEAR(measured.radiance.rgba[i], expected.radiance.rgba[i],
+                  1e-5 * expected.radiance.rgba[i] + 1e-7)
+          << file << " " << i;
+    }
+  }
 }
 
 TEST(Environment, SampledDensityMatchesPdfAndIntegratesToOne) {
