@@ -80,26 +80,65 @@ std::vector<Tap> Taps(const Stencil<N>& s) {
 
 // Weighted sum of source pixels around (base_x, base_y); `inside` says that no tap leaves the
 // image, so the clamps (the edge rule) can be skipped.
-void ApplyTaps(const Image& source, const std::vector<Tap>& taps, int base_x, int base_y,
-               bool inside, float* out) {
+// Weighted sum of source pixels around (base_x, base_y), edges repeating the border pixel.
+void ApplyTapsClamped(const Image& source, const std::vector<Tap>& taps, int base_x, int base_y,
+                      float* out) {
   float sum[kC] = {0, 0, 0, 0};
   for (const Tap& tap : taps) {
-    const int y = inside ? base_y + tap.dy : std::clamp(base_y + tap.dy, 0, source.height - 1);
-    const int x = inside ? base_x + tap.dx : std::clamp(base_x + tap.dx, 0, source.width - 1);
+    const int y = std::clamp(base_y + tap.dy, 0, source.height - 1);
+    const int x = std::clamp(base_x + tap.dx, 0, source.width - 1);
     const float* p = source.pixel(x, y);
     for (int c = 0; c < kC; ++c) sum[c] += tap.weight * p[c];
   }
   for (int c = 0; c < kC; ++c) out[c] = sum[c];
 }
 
+// The same taps away from the edges, as float offsets from the centre pixel in an image of
+// `width` pixels: no clamps and no index arithmetic per tap.
+struct OffsetTap {
+  int64_t offset;
+  float weight;
+};
+std::vector<OffsetTap> Offsets(const std::vector<Tap>& taps, int width) {
+  std::vector<OffsetTap> offsets;
+  for (const Tap& tap : taps) {
+    offsets.push_back({(int64_t{tap.dy} * width + tap.dx) * kC, tap.weight});
+  }
+  return offsets;
+}
+void ApplyOffsets(const float* centre, const std::vector<OffsetTap>& taps, float* out) {
+  // Two partial sums taken in turn, so that consecutive taps do not wait for each other's
+  // addition.
+  float even[kC] = {0, 0, 0, 0}, odd[kC] = {0, 0, 0, 0};
+  const size_t count = taps.size();
+  size_t k = 0;
+  for (; k + 1 < count; k += 2) {
+    const float* a = centre + taps[k].offset;
+    const float* b = centre + taps[k + 1].offset;
+    for (int c = 0; c < kC; ++c) {
+      even[c] += taps[k].weight * a[c];
+      odd[c] += taps[k + 1].weight * b[c];
+    }
+  }
+  if (k < count) {
+    const float* a = centre + taps[k].offset;
+    for (int c = 0; c < kC; ++c) even[c] += taps[k].weight * a[c];
+  }
+  for (int c = 0; c < kC; ++c) out[c] = even[c] + odd[c];
+}
+
 Image Down(const Image& source) {
   static const std::vector<Tap> taps = Taps(DownStencil());
+  const std::vector<OffsetTap> offsets = Offsets(taps, source.width);
   Image result((source.width + 1) / 2, (source.height + 1) / 2);
   tbb::parallel_for(0, result.height, [&](int y) {
     const bool row_inside = 2 * y - 1 >= 0 && 2 * y + 2 < source.height;
     for (int x = 0; x < result.width; ++x) {
-      const bool inside = row_inside && 2 * x - 1 >= 0 && 2 * x + 2 < source.width;
-      ApplyTaps(source, taps, 2 * x, 2 * y, inside, result.pixel(x, y));
+      if (row_inside && 2 * x - 1 >= 0 && 2 * x + 2 < source.width) {
+        ApplyOffsets(source.pixel(2 * x, 2 * y), offsets, result.pixel(x, y));
+      } else {
+        ApplyTapsClamped(source, taps, 2 * x, 2 * y, result.pixel(x, y));
+      }
     }
   });
   return result;
@@ -109,12 +148,18 @@ Image Up(const Image& source, int width, int height) {
   static const std::array<std::vector<Tap>, 4> taps = {
       Taps(UpStencil(false, false)), Taps(UpStencil(true, false)), Taps(UpStencil(false, true)),
       Taps(UpStencil(true, true))};
+  std::array<std::vector<OffsetTap>, 4> offsets;
+  for (int phase = 0; phase < 4; ++phase) offsets[phase] = Offsets(taps[phase], source.width);
   Image result(width, height);
   tbb::parallel_for(0, height, [&](int y) {
     const bool row_inside = y / 2 - 2 >= 0 && y / 2 + 2 < source.height;
     for (int x = 0; x < width; ++x) {
-      const bool inside = row_inside && x / 2 - 2 >= 0 && x / 2 + 2 < source.width;
-      ApplyTaps(source, taps[(x & 1) + 2 * (y & 1)], x / 2, y / 2, inside, result.pixel(x, y));
+      const int phase = (x & 1) + 2 * (y & 1);
+      if (row_inside && x / 2 - 2 >= 0 && x / 2 + 2 < source.width) {
+        ApplyOffsets(source.pixel(x / 2, y / 2), offsets[phase], result.pixel(x, y));
+      } else {
+        ApplyTapsClamped(source, taps[phase], x / 2, y / 2, result.pixel(x, y));
+      }
     }
   });
   return result;
