@@ -19,5 +19,7 @@ Command AddFitCommand(CLI::App& parent);
 Command AddDemoCommand(CLI::App& parent);
 Command AddMeasureCommand(CLI::App& parent);
 Command AddEnergyCommand(CLI::App& parent);
+Command AddTonemapCommand(CLI::App& parent);
+Command AddRenderCommand(CLI::App& parent);
 
 }  // namespace brdf::cli

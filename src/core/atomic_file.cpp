@@ -43,22 +43,15 @@ void FlushToDisk(const std::string& temporary) {
 
 }  // namespace
 
-void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
-                         bool binary) {
+void WriteFileAtomicallyByName(const std::string& path,
+                               const std::function<void(const std::string& temporary)>& write_to) {
   struct stat info;
   if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
     throw OutputError(path, "is a directory, expected a file name to write");
   }
   const std::string temporary = MakeTemporary(path);
   try {
-    {
-      std::ofstream stream(temporary,
-                           binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
-      if (!stream) throw OutputError(path, "cannot open a temporary file for writing");
-      write(stream);
-      stream.flush();
-      if (!stream) throw OutputError(path, "write failed (disk full?)");
-    }
+    write_to(temporary);
     FlushToDisk(temporary);
     if (std::rename(temporary.c_str(), path.c_str()) != 0) {
       throw OutputError(
@@ -68,6 +61,17 @@ void WriteFileAtomically(const std::string& path, const std::function<void(std::
     std::remove(temporary.c_str());
     throw;
   }
+}
+
+void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                         bool binary) {
+  WriteFileAtomicallyByName(path, [&](const std::string& temporary) {
+    std::ofstream stream(temporary, binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
+    if (!stream) throw OutputError(path, "cannot open a temporary file for writing");
+    write(stream);
+    stream.flush();
+    if (!stream) throw OutputError(path, "write failed (disk full?)");
+  });
 }
 
 }  // namespace brdf

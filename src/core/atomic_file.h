@@ -14,4 +14,10 @@ namespace brdf {
 void WriteFileAtomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                          bool binary = false);
 
+// The same protocol for writers that insist on opening a file by name (e.g. OpenEXR): calls
+// `write_to` with the path of a temporary file beside `path`, then flushes and renames it.
+// Errors from `write_to` propagate after the temporary is removed.
+void WriteFileAtomicallyByName(const std::string& path,
+                               const std::function<void(const std::string& temporary)>& write_to);
+
 }  // namespace brdf

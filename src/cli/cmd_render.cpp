@@ -1,0 +1,174 @@
+// brdf render MODEL|FIT.json|FILE [--light ...]... [--preset NAME] [--env SPEC] [--size N]
+// [--spp N] [--seed N] [--exr OUT.exr] --out OUT.png [tone options]: a preview sphere through
+// the HDR pipeline (DESIGN §8).
+#include <algorithm>
+#include <iostream>
+#include <memory>
+
+#include "cli/commands.h"
+#include "cli/tone_options.h"
+#include "core/errors.h"
+#include "core/progress.h"
+#include "hdr/image_files.h"
+#include "hdr/pipeline.h"
+#include "render/comparison_sheet.h"
+#include "render/sphere.h"
+
+namespace brdf::cli {
+namespace {
+
+std::string PresetHelp() {
+  std::string text = "light from theta=45, phi=45 deg with a typical illuminance:";
+  for (const IlluminancePreset& preset : IlluminancePresets()) {
+    char buffer[96];
+    std::snprintf(buffer, sizeof(buffer), " %s (%g lx, %s)", preset.name.c_str(), preset.lux,
+                  preset.description.c_str());
+    text += buffer;
+  }
+  return text + "; default office when no light, preset or environment is given";
+}
+
+// Two previews side by side in one image, so that one pipeline run maps both identically.
+Image SideBySide(const Image& a, const Image& b) {
+  Image both(a.width + b.width, a.height, 0.0f);
+  for (int y = 0; y < a.height; ++y) {
+    std::copy(a.pixel(0, y), a.pixel(0, y) + int64_t{a.width} * Image::kChannels, both.pixel(0, y));
+    std::copy(b.pixel(0, y), b.pixel(0, y) + int64_t{b.width} * Image::kChannels,
+              both.pixel(a.width, y));
+  }
+  return both;
+}
+
+// Columns [first, first + width) of an 8-bit image.
+Image8 Columns(const Image8& image, int first, int width) {
+  Image8 part;
+  part.width = width;
+  part.height = image.height;
+  part.rgb.resize(int64_t{width} * image.height * 3);
+  for (int y = 0; y < image.height; ++y) {
+    const uint8_t* row = image.rgb.data() + (int64_t{y} * image.width + first) * 3;
+    std::copy(row, row + int64_t{width} * 3, part.rgb.data() + int64_t{y} * width * 3);
+  }
+  return part;
+}
+
+}  // namespace
+
+Command AddRenderCommand(CLI::App& parent) {
+  struct Options {
+    std::string material, output, exr, exr_type = "half", exr_compression = "piz", env, versus;
+    std::vector<std::string> lights, presets;
+    RenderOptions render;
+    ToneArguments tone;
+    bool quiet = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* app = parent.add_subcommand(
+      "render", "Render a preview sphere of a material through the HDR pipeline to PNG (and EXR)");
+  app->add_option("MATERIAL", options->material,
+                  "model string, FIT.json, or measurement file (MERL table lookup; other "
+                  "formats nearest neighbour)")
+      ->required();
+  app->add_option("--out", options->output, "8-bit sRGB PNG to write")->required();
+  app->add_option("--vs", options->versus,
+                  "a second material (e.g. the fit of a measurement) rendered under the same "
+                  "light: --out becomes a sheet A | B | relative error map | colour bar");
+  app->add_option("--exr", options->exr,
+                  "also write the radiance (W/m^2/sr) as OpenEXR (of MATERIAL, with --vs)");
+  app->add_option("--exr-type", options->exr_type, "OpenEXR pixel type: half or float")
+      ->capture_default_str();
+  app->add_option("--exr-compression", options->exr_compression,
+                  "OpenEXR compression (lossless): piz, zip, rle or none")
+      ->capture_default_str();
+  app->add_option("--light", options->lights,
+                  "directional light dir:theta=DEG:phi=DEG:lux=LX (or irradiance=W/m^2, "
+                  "rgb=R,G,B W/m^2); theta from the viewer (+z), phi from right (+x) toward up "
+                  "(+y); repeatable; lux -> W/m^2 at 683 lm/W");
+  app->add_option("--preset", options->presets, PresetHelp());
+  app->add_option("--env", options->env,
+                  "environment: equirectangular OpenEXR/Radiance file, or uniform:L "
+                  "(radiance in W/m^2/sr), importance sampled");
+  app->add_option("--size", options->render.size, "image width and height in pixels")
+      ->capture_default_str();
+  app->add_option("--spp", options->render.spp,
+                  "environment samples per pixel (each technique: light and cosine, MIS)")
+      ->capture_default_str();
+  app->add_option("--seed", options->render.seed, "random seed (same image for any thread count)")
+      ->capture_default_str();
+  AddToneOptions(app, &options->tone);
+  app->add_flag("--quiet", options->quiet, "print nothing on success; no progress");
+
+  return {
+      app, [options]() {
+        options->render.Validate();
+        const ToneOptions tone = options->tone.Resolve();
+        const ExrCompression exr_compression = ParseExrCompression(options->exr_compression);
+        if (options->exr_type != "half" && options->exr_type != "float") {
+          throw UsageError("--exr-type: expected half or float, got '" + options->exr_type + "'");
+        }
+        std::vector<DirectionalLight> lights;
+        for (const std::string& text : options->lights) {
+          lights.push_back(ParseDirectionalLight(text));
+        }
+        for (const std::string& name : options->presets) lights.push_back(PresetLight(name));
+        std::optional<Environment> environment;
+        if (!options->env.empty()) {
+          int64_t broken = 0;
+          environment = Environment::Load(options->env, &broken);
+          if (broken > 0) {
+            std::cerr << "brdf render: warning: " << options->env << ": " << broken
+                      << " pixels with NaN or infinite values, replaced by 0\n";
+          }
+        }
+        if (lights.empty() && !environment) lights.push_back(PresetLight("office"));
+        const std::unique_ptr<Material> material = LoadMaterial(options->material);
+        const std::unique_ptr<Material> versus =
+            options->versus.empty() ? nullptr : LoadMaterial(options->versus);
+
+        RenderResult render, render_versus;
+        {
+          Progress progress("render", options->render.size * (versus ? 2 : 1), options->quiet);
+          const Environment* lighting = environment ? &*environment : nullptr;
+          render = RenderSphere(*material, lights, lighting, options->render, &progress);
+          if (versus) {
+            render_versus = RenderSphere(*versus, lights, lighting, options->render, &progress);
+          }
+        }
+        if (!options->exr.empty()) {
+          WriteExr(options->exr, render.radiance,
+                   options->exr_type == "half" ? ExrPixelType::kHalf : ExrPixelType::kFloat,
+                   exr_compression);
+        }
+        std::string comparison;
+        ToneResult toned;
+        if (versus) {
+          toned = RunTonePipeline(SideBySide(render.radiance, render_versus.radiance), tone);
+          const int size = options->render.size;
+          const ComparisonSheet sheet = MakeComparisonSheet(
+              Columns(toned.display, 0, size), Columns(toned.display, size, size), render.radiance,
+              render_versus.radiance, material->Describe(), versus->Describe());
+          WritePng(options->output, sheet.sheet);
+          comparison = "; " + sheet.Summary();
+        } else {
+          toned = RunTonePipeline(render.radiance, tone);
+          WritePng(options->output, toned.display);
+        }
+        for (const auto& [name, result] :
+             {std::pair<const std::string&, const RenderResult&>(options->material, render),
+              {options->versus, render_versus}}) {
+          if (result.missing_lookups > 0) {
+            std::cerr << "brdf render: warning: " << name << ": " << result.missing_lookups
+                      << " lookups fell on missing data and were rendered black\n";
+          }
+        }
+        if (!options->quiet) {
+          std::cout << "wrote " << options->output
+                    << (options->exr.empty() ? "" : " and " + options->exr) << ": "
+                    << material->Describe() << "; " << render.Summary() << "; " << toned.Summary()
+                    << comparison << "\n";
+        }
+        return 0;
+      }};
+}
+
+}  // namespace brdf::cli

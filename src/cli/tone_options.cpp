@@ -1,0 +1,90 @@
+#include "cli/tone_options.h"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "core/errors.h"
+
+namespace brdf::cli {
+namespace {
+
+double ParsePositive(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !(value > 0.0) || !std::isfinite(value)) {
+    throw UsageError(option + ": expected 'auto' or a positive number, got '" + text + "'");
+  }
+  return value;
+}
+
+}  // namespace
+
+ToneOptions ToneArguments::Resolve() const {
+  ToneOptions options;
+  options.tone_operator = ParseToneOperator(tone_operator);
+  if (ev_given && exposure != "auto") {
+    throw UsageError("--exposure and --ev both set the exposure; give one");
+  }
+  if (ev_given) options.exposure = std::exp2(ev);
+  if (exposure != "auto") options.exposure = ParsePositive("--exposure", exposure);
+  options.key = key;
+  options.white = white == "auto" ? 0.0 : ParsePositive("--white", white);
+  options.bloom = ParseBlurKind(bloom);
+  options.bloom_threshold = bloom_threshold;
+  options.bloom_strength = bloom_strength;
+  options.bloom_sigma = bloom_sigma;
+  options.transfer = TransferCurve::Parse(gamma);
+  options.Validate();
+  return options;
+}
+
+void AddToneOptions(CLI::App* app, ToneArguments* arguments) {
+  app->add_option("--operator", arguments->tone_operator,
+                  "tone mapping on luminance, chroma kept: exposure (1 - exp(-x*exposure)), "
+                  "reinhard (Reinhard 2002 global), reinhard-extended (with L_white), none")
+      ->capture_default_str()
+      ->group("Tone mapping");
+  app->add_option("--exposure", arguments->exposure,
+                  "multiplier applied before everything else; auto brings the log-average "
+                  "luminance to --key")
+      ->capture_default_str()
+      ->group("Tone mapping");
+  app->add_option_function<double>(
+         "--ev",
+         [arguments](double ev) {
+           arguments->ev = ev;
+           arguments->ev_given = true;
+         },
+         "exposure value: the multiplier is 2^EV (instead of --exposure)")
+      ->group("Tone mapping");
+  app->add_option("--key", arguments->key, "Reinhard key a: the grey the log-average maps to")
+      ->capture_default_str()
+      ->group("Tone mapping");
+  app->add_option("--white", arguments->white,
+                  "reinhard-extended L_white in key-scaled units (Reinhard 2002 eq. 4); auto = "
+                  "the scene maximum, which then maps to 1")
+      ->capture_default_str()
+      ->group("Tone mapping");
+  app->add_option("--bloom", arguments->bloom,
+                  "bloom blur: none, box (3 extended boxes), gauss, kawase, dual (Bjorge 2015)")
+      ->capture_default_str()
+      ->group("Tone mapping");
+  app->add_option("--bloom-threshold", arguments->bloom_threshold,
+                  "bright pass: luminance (after exposure) above which light blooms")
+      ->capture_default_str()
+      ->group("Tone mapping");
+  app->add_option("--bloom-strength", arguments->bloom_strength,
+                  "weight of the blurred bright pass added back")
+      ->capture_default_str()
+      ->group("Tone mapping");
+  app->add_option("--bloom-sigma", arguments->bloom_sigma,
+                  "bloom blur standard deviation in pixels (dual rounds to whole levels)")
+      ->capture_default_str()
+      ->group("Tone mapping");
+  app->add_option("--gamma", arguments->gamma,
+                  "display transfer: srgb (IEC 61966-2-1) or a plain gamma such as 2.2 or 1")
+      ->capture_default_str()
+      ->group("Tone mapping");
+}
+
+}  // namespace brdf::cli

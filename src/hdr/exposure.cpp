@@ -1,0 +1,68 @@
+#include "hdr/exposure.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.h"
+
+namespace brdf {
+namespace {
+
+struct LogSum {
+  double log_sum = 0.0;
+  double max = 0.0;
+  int64_t pixels = 0;
+};
+
+}  // namespace
+
+SceneLuminance MeasureSceneLuminance(const Image& image, double delta) {
+  const LogSum total = tbb::parallel_reduce(
+      tbb::blocked_range<int64_t>(0, image.pixel_count()), LogSum{},
+      [&](const tbb::blocked_range<int64_t>& range, LogSum sum) {
+        for (int64_t i = range.begin(); i < range.end(); ++i) {
+          const float* rgba = image.rgba.data() + i * Image::kChannels;
+          if (!(rgba[3] > 0.0f)) continue;
+          const float luminance = std::max(0.0f, PixelLuminance(rgba));
+          sum.log_sum += std::log(static_cast<float>(delta) + luminance);
+          sum.max = std::max(sum.max, static_cast<double>(luminance));
+          ++sum.pixels;
+        }
+        return sum;
+      },
+      [](LogSum a, const LogSum& b) {
+        a.log_sum += b.log_sum;
+        a.max = std::max(a.max, b.max);
+        a.pixels += b.pixels;
+        return a;
+      });
+  SceneLuminance scene;
+  scene.pixels = total.pixels;
+  scene.max = total.max;
+  scene.log_average = total.pixels > 0 ? std::exp(total.log_sum / total.pixels) : 0.0;
+  return scene;
+}
+
+void ApplyExposure(Image* image, double exposure) {
+  const float scale = static_cast<float>(exposure);
+  tbb::parallel_for(tbb::blocked_range<int64_t>(0, image->pixel_count()),
+                    [&](const tbb::blocked_range<int64_t>& range) {
+                      for (int64_t i = range.begin(); i < range.end(); ++i) {
+                        float* rgba = image->rgba.data() + i * Image::kChannels;
+                        rgba[0] *= scale;
+                        rgba[1] *= scale;
+                        rgba[2] *= scale;
+                      }
+                    });
+}
+
+double AutoExposure(const SceneLuminance& scene, double key) {
+  // A black scene has nothing to expose; leave it as it is.
+  return scene.log_average > 0.0 && scene.max > 0.0 ? key / scene.log_average : 1.0;
+}
+
+}  // namespace brdf

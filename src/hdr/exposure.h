@@ -1,0 +1,28 @@
+// The exposure stage and the scene statistics the later stages need (DESIGN §8).
+#pragma once
+
+#include <cstdint>
+
+#include "hdr/image.h"
+
+namespace brdf {
+
+// Luminance statistics over the pixels with alpha > 0 (a rendered sphere's background does
+// not count; an image without alpha has alpha 1 everywhere).
+struct SceneLuminance {
+  // Reinhard et al. 2002, eq. (1): exp(mean(log(delta + L_w))); delta keeps black pixels from
+  // sending the mean to -infinity.
+  double log_average = 0.0;
+  double max = 0.0;
+  int64_t pixels = 0;
+};
+SceneLuminance MeasureSceneLuminance(const Image& image, double delta = 1e-4);
+
+// Multiplies RGB by `exposure` (2^EV for an exposure value EV).
+void ApplyExposure(Image* image, double exposure);
+
+// The exposure that brings the log-average luminance to `key` (Reinhard's 0.18, "middle
+// grey"): how the preview chooses an exposure by itself.
+double AutoExposure(const SceneLuminance& scene, double key = 0.18);
+
+}  // namespace brdf

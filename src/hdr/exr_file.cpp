@@ -1,0 +1,160 @@
+// OpenEXR through its C++ API (ImfInputFile / ImfOutputFile). OpenEXR converts between the
+// file's channel type (half or float) and the float frame buffer, so one buffer layout serves
+// both. Its exceptions are translated here, at the boundary, into the program's own (after tev).
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfThreading.h>
+#include <half.h>
+
+#include <algorithm>
+#include <exception>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+#include "core/atomic_file.h"
+#include "core/errors.h"
+#include "hdr/image_files.h"
+
+namespace brdf {
+namespace {
+
+// OpenEXR's messages may span lines; an error here is one line (DESIGN §3).
+std::string OneLine(std::string message) {
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  return message;
+}
+
+// OpenEXR compresses and decompresses line blocks in its own thread pool.
+void UseAllCoresForExr() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    Imf::setGlobalThreadCount(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  });
+}
+
+Imf::Slice FloatSlice(Image* image, int channel, int min_x, int min_y, double fill) {
+  // OpenEXR addresses pixel (x, y) of the data window at base + x*xStride + y*yStride.
+  const size_t x_stride = sizeof(float) * Image::kChannels;
+  const size_t y_stride = x_stride * image->width;
+  char* base = reinterpret_cast<char*>(image->rgba.data() + channel) -
+               static_cast<ptrdiff_t>(min_x) * x_stride - static_cast<ptrdiff_t>(min_y) * y_stride;
+  return Imf::Slice(Imf::FLOAT, base, x_stride, y_stride, 1, 1, fill);
+}
+
+}  // namespace
+
+Image ReadExr(const std::string& path) {
+  if (!std::ifstream(path)) throw InputError(path, "cannot open the file");
+  UseAllCoresForExr();
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    // In 64 bits: a hostile header's corners may be any int32.
+    const int64_t width64 = int64_t{window.max.x} - window.min.x + 1;
+    const int64_t height64 = int64_t{window.max.y} - window.min.y + 1;
+    if (width64 <= 0 || height64 <= 0 || width64 > 65536 || height64 > 65536) {
+      throw InputError(path, "data window " + std::to_string(width64) + "x" +
+                                 std::to_string(height64) + " is not a plausible image size");
+    }
+    const int width = static_cast<int>(width64), height = static_cast<int>(height64);
+    CheckImageSize(width, height, path);
+    const Imf::ChannelList& channels = file.header().channels();
+    const bool has_rgb =
+        channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
+    const bool has_y = channels.findChannel("Y") != nullptr;
+    if (!has_rgb && !has_y) throw InputError(path, "no R, G, B or Y channel to read");
+
+    Image image(width, height);
+    Imf::FrameBuffer frame;
+    if (has_rgb) {
+      frame.insert("R", FloatSlice(&image, 0, window.min.x, window.min.y, 0.0));
+      frame.insert("G", FloatSlice(&image, 1, window.min.x, window.min.y, 0.0));
+      frame.insert("B", FloatSlice(&image, 2, window.min.x, window.min.y, 0.0));
+    } else {
+      frame.insert("Y", FloatSlice(&image, 0, window.min.x, window.min.y, 0.0));
+    }
+    frame.insert("A", FloatSlice(&image, 3, window.min.x, window.min.y, 1.0));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    if (!has_rgb) {
+      for (int64_t i = 0; i < image.pixel_count(); ++i) {
+        float* rgba = image.rgba.data() + i * Image::kChannels;
+        rgba[1] = rgba[2] = rgba[0];
+      }
+    }
+    return image;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& error) {
+    throw InputError(path, "not a readable OpenEXR file: " + OneLine(error.what()));
+  }
+}
+
+ExrCompression ParseExrCompression(const std::string& name) {
+  if (name == "zip") return ExrCompression::kZip;
+  if (name == "piz") return ExrCompression::kPiz;
+  if (name == "rle") return ExrCompression::kRle;
+  if (name == "none") return ExrCompression::kNone;
+  throw UsageError("unknown OpenEXR compression '" + name + "', expected zip, piz, rle or none");
+}
+
+void WriteExr(const std::string& path, const Image& image, ExrPixelType type,
+              ExrCompression compression) {
+  CheckImageSize(image.width, image.height, path);
+  UseAllCoresForExr();
+  const Imf::PixelType pixel_type = type == ExrPixelType::kHalf ? Imf::HALF : Imf::FLOAT;
+  WriteFileAtomicallyByName(path, [&](const std::string& temporary) {
+    try {
+      Imf::Header header(image.width, image.height);
+      switch (compression) {
+        case ExrCompression::kZip:
+          header.compression() = Imf::ZIP_COMPRESSION;
+          break;
+        case ExrCompression::kPiz:
+          header.compression() = Imf::PIZ_COMPRESSION;
+          break;
+        case ExrCompression::kRle:
+          header.compression() = Imf::RLE_COMPRESSION;
+          break;
+        case ExrCompression::kNone:
+          header.compression() = Imf::NO_COMPRESSION;
+          break;
+      }
+      // zlib level 1: a preview is written once and read rarely; the default level 6 costs
+      // several times the time for a few percent of size on noisy HDR data.
+      header.zipCompressionLevel() = 1;
+      for (const char* name : {"R", "G", "B", "A"}) {
+        header.channels().insert(name, Imf::Channel(pixel_type));
+      }
+      Imf::OutputFile file(temporary.c_str(), header);
+      Imf::FrameBuffer frame;
+      const char* names[] = {"R", "G", "B", "A"};
+      // OpenEXR converts types when reading but not when writing: a half file needs a half
+      // frame buffer.
+      std::vector<half> halves;
+      if (type == ExrPixelType::kHalf) {
+        halves.assign(image.rgba.begin(), image.rgba.end());
+        const size_t x_stride = sizeof(half) * Image::kChannels;
+        for (int c = 0; c < Image::kChannels; ++c) {
+          frame.insert(names[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data() + c),
+                                            x_stride, x_stride * image.width));
+        }
+      } else {
+        Image& pixels = const_cast<Image&>(image);  // OpenEXR's Slice takes char*; read only
+        for (int c = 0; c < Image::kChannels; ++c) {
+          frame.insert(names[c], FloatSlice(&pixels, c, 0, 0, 0.0));
+        }
+      }
+      file.setFrameBuffer(frame);
+      file.writePixels(image.height);
+    } catch (const std::exception& error) {
+      throw OutputError(path, "cannot write OpenEXR: " + OneLine(error.what()));
+    }
+  });
+}
+
+}  // namespace brdf

@@ -1,0 +1,37 @@
+#include "hdr/image.h"
+
+#include <cmath>
+
+#include "core/errors.h"
+
+namespace brdf {
+
+Image::Image(int width, int height, float alpha)
+    : width(width), height(height), rgba(int64_t{width} * height * kChannels, 0.0f) {
+  for (int64_t i = 0; i < pixel_count(); ++i) rgba[i * kChannels + 3] = alpha;
+}
+
+int64_t ReplaceNonFinite(Image* image) {
+  int64_t count = 0;
+  for (int64_t i = 0; i < image->pixel_count(); ++i) {
+    float* rgba = image->rgba.data() + i * Image::kChannels;
+    const bool broken_colour =
+        !std::isfinite(rgba[0]) || !std::isfinite(rgba[1]) || !std::isfinite(rgba[2]);
+    const bool broken_alpha = !std::isfinite(rgba[3]);
+    // The other channels of a broken pixel are not trusted either: the whole colour goes.
+    if (broken_colour) rgba[0] = rgba[1] = rgba[2] = 0.0f;
+    if (broken_alpha) rgba[3] = 1.0f;
+    count += broken_colour || broken_alpha;
+  }
+  return count;
+}
+
+void CheckImageSize(int width, int height, const std::string& what) {
+  constexpr int kMaxSide = 65536;
+  if (width <= 0 || height <= 0 || width > kMaxSide || height > kMaxSide) {
+    throw UsageError(what + ": image size " + std::to_string(width) + "x" + std::to_string(height) +
+                     " is outside 1.." + std::to_string(kMaxSide));
+  }
+}
+
+}  // namespace brdf

@@ -1,0 +1,45 @@
+// Image files of the HDR pipeline (DESIGN §8): OpenEXR (read, write half or float), Radiance
+// RGBE `.hdr` (read, through OpenCV) and 8-bit PNG (write, through OpenCV). Readers throw
+// InputError naming the file (and the byte where a signature is wrong); writers are atomic
+// (temporary file, then rename) and throw OutputError naming the target.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "hdr/image.h"
+
+namespace brdf {
+
+enum class ExrPixelType { kHalf, kFloat };
+// Lossless OpenEXR compressions: zip (zlib level 1 here, 16-line blocks), piz (wavelet +
+// Huffman; the default: on noisy HDR renders about as small as zip and twice as fast to write,
+// docs/hdr.md), rle, none.
+enum class ExrCompression { kZip, kPiz, kRle, kNone };
+// "zip", "piz", "rle", "none"; throws UsageError otherwise.
+ExrCompression ParseExrCompression(const std::string& name);
+
+// Reads the R, G, B (or luminance-only Y) and A channels of a scan-line or tiled OpenEXR file
+// as float; a missing channel reads as 0 (A as 1).
+Image ReadExr(const std::string& path);
+// Writes R, G, B, A in half or float.
+void WriteExr(const std::string& path, const Image& image, ExrPixelType type,
+              ExrCompression compression = ExrCompression::kPiz);
+
+// Reads a Radiance RGBE file (`#?RADIANCE`, run-length encoded or flat) as linear float RGB,
+// alpha 1.
+Image ReadRadiance(const std::string& path);
+
+// OpenEXR or Radiance, chosen by the file's signature (never by the extension alone).
+Image ReadHdrImage(const std::string& path);
+
+// 8-bit sRGB-encoded RGB, `width * height * 3` bytes, top row first.
+struct Image8 {
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgb;
+};
+void WritePng(const std::string& path, const Image8& image);
+
+}  // namespace brdf

@@ -1,0 +1,125 @@
+#include "render/comparison_sheet.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <opencv2/imgproc.hpp>
+
+#include "core/errors.h"
+
+namespace brdf {
+namespace {
+
+constexpr int kLabelHeight = 28;
+constexpr int kBarWidth = 70;
+
+// The smallest 1, 2 or 5 times a power of ten at or above `value`.
+double RoundUp125(double value) {
+  if (!(value > 0.0)) return 1.0;
+  const double decade = std::pow(10.0, std::floor(std::log10(value)));
+  for (double step : {1.0, 2.0, 5.0, 10.0}) {
+    if (step * decade >= value * (1 - 1e-12)) return step * decade;
+  }
+  return 10.0 * decade;
+}
+
+cv::Mat ToBgr(const Image8& image) {
+  const cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<uint8_t*>(image.rgb.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  return bgr;
+}
+
+void Label(cv::Mat& sheet, const std::string& text, int x, int width) {
+  // Long model strings are cut to what fits (about 8 px per character at this scale).
+  const size_t fits = static_cast<size_t>(std::max(4, width / 8));
+  const std::string shown = text.size() > fits ? text.substr(0, fits - 3) + "..." : text;
+  cv::putText(sheet, shown, cv::Point(x + 4, 19), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+              cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+}
+
+}  // namespace
+
+std::string ComparisonSheet::Summary() const {
+  char buffer[160];
+  std::snprintf(buffer, sizeof(buffer),
+                "relative luminance error |A-B|/B: mean %.3g, max %.3g (colour bar 0..%g)",
+                mean_relative_error, max_relative_error, colour_bar_top);
+  return buffer;
+}
+
+ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& display_b,
+                                    const Image& radiance_a, const Image& radiance_b,
+                                    const std::string& label_a, const std::string& label_b) {
+  const int size_x = display_a.width, size_y = display_a.height;
+  if (display_b.width != size_x || display_b.height != size_y || radiance_a.width != size_x ||
+      radiance_b.width != size_x || radiance_a.height != size_y || radiance_b.height != size_y) {
+    throw ComputeError("comparison sheet: the two previews differ in size");
+  }
+  ComparisonSheet result;
+  // Relative error where both spheres have a pixel; a black B pixel (no light there) counts
+  // only if A is not black too.
+  cv::Mat error(size_y, size_x, CV_32F, cv::Scalar(0));
+  cv::Mat on_sphere(size_y, size_x, CV_8U, cv::Scalar(0));
+  double sum = 0.0;
+  int64_t count = 0;
+  for (int y = 0; y < size_y; ++y) {
+    for (int x = 0; x < size_x; ++x) {
+      const float* a = radiance_a.pixel(x, y);
+      const float* b = radiance_b.pixel(x, y);
+      if (a[3] == 0.0f || b[3] == 0.0f) continue;
+      const double luminance_a = PixelLuminance(a), luminance_b = PixelLuminance(b);
+      const double difference = std::abs(luminance_a - luminance_b);
+      const double relative =
+          luminance_b > 0.0 ? difference / luminance_b : (difference > 0.0 ? 1.0 : 0.0);
+      error.at<float>(y, x) = static_cast<float>(relative);
+      on_sphere.at<uint8_t>(y, x) = 255;
+      result.max_relative_error = std::max(result.max_relative_error, relative);
+      sum += relative;
+      ++count;
+    }
+  }
+  result.mean_relative_error = count > 0 ? sum / count : 0.0;
+  result.colour_bar_top = RoundUp125(result.max_relative_error);
+
+  cv::Mat error8, error_colour;
+  error.convertTo(error8, CV_8U, 255.0 / result.colour_bar_top);
+  cv::applyColorMap(error8, error_colour, cv::COLORMAP_VIRIDIS);
+  error_colour.setTo(cv::Scalar(0, 0, 0), on_sphere == 0);
+
+  cv::Mat sheet(size_y + kLabelHeight, 3 * size_x + kBarWidth, CV_8UC3, cv::Scalar(40, 40, 40));
+  ToBgr(display_a).copyTo(sheet(cv::Rect(0, kLabelHeight, size_x, size_y)));
+  ToBgr(display_b).copyTo(sheet(cv::Rect(size_x, kLabelHeight, size_x, size_y)));
+  error_colour.copyTo(sheet(cv::Rect(2 * size_x, kLabelHeight, size_x, size_y)));
+  Label(sheet, "A: " + label_a, 0, size_x);
+  Label(sheet, "B: " + label_b, size_x, size_x);
+  Label(sheet, "|A-B|/B (luminance)", 2 * size_x, size_x);
+
+  // Colour bar: top = colour_bar_top, bottom = 0, labelled at both ends and the middle.
+  const int bar_x = 3 * size_x + 8, bar_top = kLabelHeight + 10, bar_height = size_y - 20;
+  cv::Mat ramp(bar_height, 1, CV_8U);
+  for (int row = 0; row < bar_height; ++row) {
+    ramp.at<uint8_t>(row, 0) = static_cast<uint8_t>(
+        std::lround(255.0 * (bar_height - 1 - row) / std::max(1, bar_height - 1)));
+  }
+  cv::Mat ramp_colour;
+  cv::applyColorMap(ramp, ramp_colour, cv::COLORMAP_VIRIDIS);
+  cv::resize(ramp_colour, ramp_colour, cv::Size(14, bar_height), 0, 0, cv::INTER_NEAREST);
+  ramp_colour.copyTo(sheet(cv::Rect(bar_x, bar_top, 14, bar_height)));
+  for (double fraction : {1.0, 0.5, 0.0}) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", fraction * result.colour_bar_top);
+    const int y = bar_top + static_cast<int>((1.0 - fraction) * (bar_height - 1));
+    cv::putText(sheet, text, cv::Point(bar_x + 18, y + 4), cv::FONT_HERSHEY_SIMPLEX, 0.38,
+                cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  }
+
+  result.sheet.width = sheet.cols;
+  result.sheet.height = sheet.rows;
+  result.sheet.rgb.resize(int64_t{sheet.cols} * sheet.rows * 3);
+  cv::Mat rgb(sheet.rows, sheet.cols, CV_8UC3, result.sheet.rgb.data());
+  cv::cvtColor(sheet, rgb, cv::COLOR_BGR2RGB);  // writes into result.sheet.rgb
+  return result;
+}
+
+}  // namespace brdf

@@ -1,0 +1,29 @@
+// Side-by-side comparison of two previews rendered under identical light (DESIGN §8: "measured
+// vs fitted spheres with a false-colour error map"): A, B, the relative luminance error
+// |Y_A - Y_B| / Y_B in false colour, and a labelled colour bar.
+#pragma once
+
+#include <string>
+
+#include "hdr/image.h"
+#include "hdr/image_files.h"
+
+namespace brdf {
+
+struct ComparisonSheet {
+  Image8 sheet;
+  double max_relative_error = 0.0;  // over pixels on both spheres
+  double mean_relative_error = 0.0;
+  double colour_bar_top = 0.0;  // the error shown as the top of the colour bar
+  std::string Summary() const;
+};
+
+// `display_a`, `display_b`: the two previews after the HDR pipeline (same size);
+// `radiance_a`, `radiance_b`: their radiance (alpha 0 off the sphere). The error map uses the
+// viridis colour map (perceptually uniform, readable in grey) from 0 to a round number at or
+// above the largest error.
+ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& display_b,
+                                    const Image& radiance_a, const Image& radiance_b,
+                                    const std::string& label_a, const std::string& label_b);
+
+}  // namespace brdf

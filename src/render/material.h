@@ -1,0 +1,34 @@
+// What the preview renders: a reflectance model (a model string or a fit report, through
+// LoadModel) or a measurement file through interpolation (DESIGN §8).
+//
+// Measured data:
+//   * MERL tables are looked up cell by cell (MerlTable::Lookup: the half/difference cell
+//     containing (wi, wo), piecewise constant; missing cells render black and are counted).
+//   * Scattered measurements (Cornell, Zemax, native CSV) use nearest-neighbour interpolation
+//     on a grid: the isotropic half/difference space (theta_h, theta_d in [0, pi/2], phi_d
+//     folded into [0, pi) by reciprocity) is cut into 32 x 32 x 32 cells, and each cell takes
+//     the value of the present sample nearest to its centre (Euclidean distance in radians).
+//     Simple and predictable; it ignores anisotropy and shows the sampling pattern as facets.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/vec.h"
+
+namespace brdf {
+
+class Material {
+ public:
+  virtual ~Material() = default;
+  // f(wi, wo) in sr^-1 in the local shading frame (DESIGN §1); NaN where the data has no value.
+  virtual Rgb Eval(const Vec3& wi, const Vec3& wo) const = 0;
+  // What it is, for the summary line: a model string or "FILE (format, interpolation)".
+  virtual std::string Describe() const = 0;
+};
+
+// A model string or FIT.json (LoadModel), else a measurement file. Throws UsageError /
+// InputError naming the argument.
+std::unique_ptr<Material> LoadMaterial(const std::string& spec);
+
+}  // namespace brdf

@@ -1,0 +1,57 @@
+// The preview sphere (DESIGN §8): a unit sphere of one material seen by an orthographic camera
+// along -z, filling the image; each pixel's radiance in W/(m^2 sr) in a float RGBA buffer
+// (alpha 1 on the sphere, 0 around it).
+//
+// Pixel (x, y) of an N x N image looks at (u, v) = ((2x + 1)/N - 1, 1 - (2y + 1)/N); on the
+// sphere (u^2 + v^2 < 1) the normal is n = (u, v, sqrt(1 - u^2 - v^2)) and wo = +z.
+//
+//   Lo = sum over directional lights of f(wi, wo) E cos(theta_i)          (exact, no noise)
+//      + integral of f(wi, wo) L_env(wi) cos(theta_i) dwi                  (Monte Carlo)
+// The environment integral takes, per pixel, `spp` directions from the environment's
+// luminance distribution and `spp` from the cosine distribution, combined by multiple
+// importance sampling with the power heuristic (Veach & Guibas, "Optimally combining sampling
+// techniques for Monte Carlo rendering", SIGGRAPH 1995). The convex sphere never shadows
+// itself, so no visibility term is needed.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hdr/image.h"
+#include "render/environment.h"
+#include "render/lights.h"
+#include "render/material.h"
+
+namespace brdf {
+
+class Progress;
+
+struct RenderOptions {
+  int size = 512;     // image width = height, px
+  int spp = 64;       // environment samples per pixel and per technique
+  uint64_t seed = 0;  // the same seed gives the same image whatever the thread count
+
+  // Throws UsageError naming the option.
+  void Validate() const;
+};
+
+struct RenderResult {
+  Image radiance;
+  // Per pixel, the standard error of the Monte Carlo estimate of the luminance (0 where there
+  // is no environment or no sphere).
+  std::vector<float> luminance_std_error;
+  int64_t sphere_pixels = 0;
+  int64_t missing_lookups = 0;  // measured data without a value (rendered black)
+  std::string Summary() const;
+};
+
+RenderResult RenderSphere(const Material& material, const std::vector<DirectionalLight>& lights,
+                          const Environment* environment, const RenderOptions& options,
+                          Progress* progress = nullptr);
+
+// The surface normal under pixel (x, y), or nullopt off the sphere.
+std::optional<Vec3> SphereNormal(int x, int y, int size);
+
+}  // namespace brdf

@@ -1,0 +1,135 @@
+// HDR image files: OpenEXR round trips (half, float), the real Radiance and OpenEXR copies of
+// Debevec's Memorial Church read to the same picture, and broken files rejected by name.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/errors.h"
+#include "hdr/image_files.h"
+#include "test_util.h"
+
+namespace brdf {
+namespace {
+
+using testing::DataPath;
+using testing::ScratchDir;
+
+Image RandomHdrImage(int width, int height, unsigned seed) {
+  Image image(width, height);
+  std::mt19937 random(seed);
+  // Log-uniform over 8 decades (half reaches 65504; its normal range starts at 6e-5).
+  std::uniform_real_distribution<float> exponent(-4.0f, 4.0f);
+  for (float& value : image.rgba) value = std::pow(10.0f, exponent(random));
+  return image;
+}
+
+TEST(ExrFile, FloatRoundTripIsExact) {
+  ScratchDir dir;
+  const Image image = RandomHdrImage(37, 23, 1);
+  WriteExr(dir.File("a.exr"), image, ExrPixelType::kFloat);
+  const Image back = ReadExr(dir.File("a.exr"));
+  ASSERT_EQ(back.width, 37);
+  ASSERT_EQ(back.height, 23);
+  EXPECT_EQ(back.rgba, image.rgba);
+  EXPECT_EQ(dir.CountEntries(), 1);  // no temporary left behind
+}
+
+TEST(ExrFile, HalfRoundTripWithinHalfPrecision) {
+  ScratchDir dir;
+  const Image image = RandomHdrImage(64, 32, 2);
+  WriteExr(dir.File("a.exr"), image, ExrPixelType::kHalf);
+  const Image back = ReadHdrImage(dir.File("a.exr"));  // detected by its magic number
+  ASSERT_EQ(back.rgba.size(), image.rgba.size());
+  for (size_t i = 0; i < image.rgba.size(); ++i) {
+    const float value = image.rgba[i];
+    // half has an 11-bit significand (relative rounding error <= 2^-11) for normal values
+    // (>= 2^-14); below that the spacing is fixed at 2^-24.
+    const float tolerance = std::max(value * std::ldexp(1.0f, -11), std::ldexp(1.0f, -25));
+    ASSERT_NEAR(back.rgba[i], value, tolerance) << i;
+  }
+}
+
+TEST(RadianceFile, MemorialChurchReadsLikeItsExrCopy) {
+  const Image radiance = ReadHdrImage(DataPath("hdr/memorial.hdr"));
+  const Image exr = ReadHdrImage(DataPath("hdr/memorial.exr"));
+  ASSERT_EQ(radiance.width, 512);
+  ASSERT_EQ(radiance.height, 768);
+  ASSERT_EQ(exr.width, radiance.width);
+  ASSERT_EQ(exr.height, radiance.height);
+  // RGBE keeps 8 bits of mantissa per channel under a shared exponent: the channels agree to
+  // about 1% of the pixel's largest channel.
+  int64_t agreeing = 0;
+  for (int64_t i = 0; i < radiance.pixel_count(); ++i) {
+    const float* a = &radiance.rgba[i * 4];
+    const float* b = &exr.rgba[i * 4];
+    const float largest = std::max({a[0], a[1], a[2], 1e-6f});
+    bool close = true;
+    for (int c = 0; c < 3; ++c) close = close && std::abs(a[c] - b[c]) <= 0.01f * largest;
+    agreeing += close;
+    EXPECT_EQ(a[3], 1.0f);
+  }
+  EXPECT_GT(agreeing, 0.99 * radiance.pixel_count());
+}
+
+TEST(RadianceFile, RealEnvironmentMapIsTwoToOne) {
+  const Image image = ReadRadiance(DataPath("hdr/venice_sunset_1k.hdr"));
+  EXPECT_EQ(image.width, 1024);
+  EXPECT_EQ(image.height, 512);
+  float largest = 0.0f;
+  for (int64_t i = 0; i < image.pixel_count(); ++i) {
+    largest = std::max(largest, PixelLuminance(&image.rgba[i * 4]));
+  }
+  EXPECT_GT(largest, 100.0f);  // the sun: far beyond display white
+}
+
+TEST(HdrFiles, BrokenFilesAreInputErrorsNamingTheFile) {
+  ScratchDir dir;
+  const std::string missing = dir.File("missing.exr");
+  const std::string garbage = dir.Write("garbage.hdr", "P6 not an hdr image");
+  const std::string truncated_exr =
+      dir.Write("cut.exr", testing::ReadFileText(DataPath("hdr/memorial.exr")).substr(0, 2000));
+  const std::string truncated_hdr =
+      dir.Write("cut.hdr", testing::ReadFileText(DataPath("hdr/memorial.hdr")).substr(0, 3000));
+  for (const std::string& path : {missing, garbage, truncated_exr, truncated_hdr}) {
+    try {
+      ReadHdrImage(path);
+      ADD_FAILURE() << path << " was accepted";
+    } catch (const InputError& error) {
+      EXPECT_EQ(std::string(error.what()).rfind(path + ": ", 0), 0u) << error.what();
+      EXPECT_EQ(std::string(error.what()).find('\n'), std::string::npos) << error.what();
+    }
+  }
+}
+
+TEST(HdrFiles, NonFinitePixelsAreCountedAndReplaced) {
+  Image image(4, 1);
+  image.pixel(1, 0)[0] = std::nanf("");
+  image.pixel(1, 0)[1] = 0.5f;
+  image.pixel(2, 0)[2] = INFINITY;
+  image.pixel(3, 0)[1] = -INFINITY;
+  image.pixel(3, 0)[2] = std::nanf("");
+  EXPECT_EQ(ReplaceNonFinite(&image), 3);
+  for (float value : image.rgba) EXPECT_TRUE(std::isfinite(value));
+  for (int x = 1; x < 4; ++x) {
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(image.pixel(x, 0)[c], 0.0f);
+  }
+  EXPECT_EQ(ReplaceNonFinite(&image), 0);
+}
+
+TEST(PngFile, WritesWhatIsGivenAtomically) {
+  ScratchDir dir;
+  Image8 image;
+  image.width = 2;
+  image.height = 1;
+  image.rgb = {255, 0, 10, 1, 2, 3};
+  WritePng(dir.File("a.png"), image);
+  const std::string bytes = testing::ReadFileText(dir.File("a.png"));
+  ASSERT_GT(bytes.size(), 8u);
+  EXPECT_EQ(bytes.substr(1, 3), "PNG");
+  EXPECT_EQ(dir.CountEntries(), 1);
+  EXPECT_THROW(WritePng(dir.path(), image), OutputError);  // a directory
+}
+
+}  // namespace
+}  // namespace brdf
