@@ -243,8 +243,11 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
           break;
         }
         const Frame facet = Frame::FromZ(normal);
-        const Vec3 wo_local =
-            material_.Scatter(facet.ToLocal(-direction), rng.Uniform(), rng.Uniform(), &throughput);
+        // Separate statements: argument evaluation order is unspecified, and the output must
+        // not depend on the compiler.
+        const double s0 = rng.Uniform();
+        const double s1 = rng.Uniform();
+        const Vec3 wo_local = material_.Scatter(facet.ToLocal(-direction), s0, s1, &throughput);
         if (wo_local.z() <= 0) break;
         direction = facet.FromLocal(wo_local).normalized();
         origin += 1e-4 * normal;  // step off the facet so the next ray does not hit it again

@@ -28,30 +28,6 @@ std::string PresetHelp() {
   return text + "; default office when no light, preset or environment is given";
 }
 
-// Two previews side by side in one image, so that one pipeline run maps both identically.
-Image SideBySide(const Image& a, const Image& b) {
-  Image both(a.width + b.width, a.height, 0.0f);
-  for (int y = 0; y < a.height; ++y) {
-    std::copy(a.pixel(0, y), a.pixel(0, y) + int64_t{a.width} * Image::kChannels, both.pixel(0, y));
-    std::copy(b.pixel(0, y), b.pixel(0, y) + int64_t{b.width} * Image::kChannels,
-              both.pixel(a.width, y));
-  }
-  return both;
-}
-
-// Columns [first, first + width) of an 8-bit image.
-Image8 Columns(const Image8& image, int first, int width) {
-  Image8 part;
-  part.width = width;
-  part.height = image.height;
-  part.rgb.resize(int64_t{width} * image.height * 3);
-  for (int y = 0; y < image.height; ++y) {
-    const uint8_t* row = image.rgb.data() + (int64_t{y} * image.width + first) * 3;
-    std::copy(row, row + int64_t{width} * 3, part.rgb.data() + int64_t{y} * width * 3);
-  }
-  return part;
-}
-
 }  // namespace
 
 Command AddRenderCommand(CLI::App& parent) {
@@ -142,11 +118,9 @@ Command AddRenderCommand(CLI::App& parent) {
         std::string comparison;
         ToneResult toned;
         if (versus) {
-          toned = RunTonePipeline(SideBySide(render.radiance, render_versus.radiance), tone);
-          const int size = options->render.size;
-          const ComparisonSheet sheet = MakeComparisonSheet(
-              Columns(toned.display, 0, size), Columns(toned.display, size, size), render.radiance,
-              render_versus.radiance, material->Describe(), versus->Describe());
+          const ComparisonSheet sheet =
+              ToneMapAndCompare(render.radiance, render_versus.radiance, tone, material->Describe(),
+                                versus->Describe(), &toned);
           WritePng(options->output, sheet.sheet);
           comparison = "; " + sheet.Summary();
         } else {

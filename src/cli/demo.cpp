@@ -1,5 +1,6 @@
 #include "cli/demo.h"
 
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,6 +19,10 @@
 #include "gonio/measure.h"
 #include "io/formats.h"
 #include "models/model_string.h"
+#include "render/comparison_sheet.h"
+#include "render/environment.h"
+#include "render/lights.h"
+#include "render/sphere.h"
 
 namespace brdf::cli {
 namespace {
@@ -114,7 +119,10 @@ double MaxRelativeError(const Model& fitted, const Model& truth) {
 
 void FitDataset(const Measurement& measurement, const DemoOptions& options,
                 const std::string& out_dir, DemoDataset* dataset) {
+  // The log loss (Löw et al. 2012) weighs errors relative to the value, so a 600 sr^-1
+  // highlight does not drown the diffuse floor a preview shows everywhere else.
   fitters::FitOptions fit_options;
+  fit_options.loss = fitters::Loss::kLog;
   if (options.quick) {
     fit_options.max_samples = 5000;
     fit_options.start_exponents = {4, 64, 1024, 16384};
@@ -149,6 +157,46 @@ void FitDataset(const Measurement& measurement, const DemoOptions& options,
   dataset->seconds += SecondsSince(start);
 }
 
+// Measured and fitted spheres side by side with the relative error, under the HDR environment
+// and under a direct-sun preset (DESIGN §8 sheets), through one tone pipeline each.
+void RenderSheets(const DemoOptions& options, const Environment& environment,
+                  DemoDataset* dataset) {
+  const auto start = Clock::now();
+  const std::string measured_spec = dataset->kind == "simulated"
+                                        ? options.out_dir + "/" + dataset->measurement_path
+                                        : dataset->measurement_path;
+  const std::string fitted_spec = options.out_dir + "/" + dataset->fit_paths[dataset->chosen];
+  const std::unique_ptr<Material> measured = LoadMaterial(measured_spec);
+  const std::unique_ptr<Material> fitted = LoadMaterial(fitted_spec);
+  RenderOptions render;
+  render.size = options.quick ? 128 : 256;
+  render.spp = options.quick ? 8 : 32;
+  render.seed = 1;
+  const std::string fit_label = dataset->fits[dataset->chosen].model.name() + " fit";
+  struct Lighting {
+    const char* name;
+    const char* caption;
+    std::vector<DirectionalLight> lights;
+    const Environment* environment;
+  };
+  const Lighting lightings[] = {
+      {"env", "under the Venice sunset environment", {}, &environment},
+      {"sunny", "under the 'sunny' preset (direct sun)", {PresetLight("sunny")}, nullptr},
+  };
+  for (const Lighting& lighting : lightings) {
+    const RenderResult a = RenderSphere(*measured, lighting.lights, lighting.environment, render);
+    const RenderResult b = RenderSphere(*fitted, lighting.lights, lighting.environment, render);
+    const ComparisonSheet sheet =
+        ToneMapAndCompare(a.radiance, b.radiance, ToneOptions{}, "measured", fit_label);
+    const std::string path = "images/" + dataset->name + "-" + lighting.name + ".png";
+    WritePng(options.out_dir + "/" + path, sheet.sheet);
+    dataset->images.push_back(
+        {std::string("measured | fitted | error, ") + lighting.caption + ": " + sheet.Summary(),
+         path});
+  }
+  dataset->seconds += SecondsSince(start);
+}
+
 }  // namespace
 
 DemoResult RunDemo(const DemoOptions& options) {
@@ -173,7 +221,7 @@ DemoResult RunDemo(const DemoOptions& options) {
   }
   const std::string surface_json = WriteSurfaceSample(options.out_dir, options.quick);
   const std::vector<SimulatedSample> simulated = SimulatedSamples(options, surface_json);
-  Steps steps(static_cast<int>(1 + 2 * simulated.size() + real.size()), options.quiet);
+  Steps steps(static_cast<int>(2 + 2 * simulated.size() + real.size()), options.quiet);
 
   steps.Announce("summarizing " + std::to_string(bundled.size()) + " bundled measurements");
   for (const std::string& path : bundled) {
@@ -220,6 +268,10 @@ DemoResult RunDemo(const DemoOptions& options) {
     FitDataset(measurement, options, options.out_dir, &dataset);
     result.datasets.push_back(std::move(dataset));
   }
+  steps.Announce("rendering measured-vs-fitted sheets");
+  const Environment environment = Environment::Load(options.data_dir + "/hdr/venice_sunset_1k.hdr");
+  tbb::parallel_for(size_t{0}, result.datasets.size(),
+                    [&](size_t k) { RenderSheets(options, environment, &result.datasets[k]); });
   if (options.quick) {
     result.notes.push_back(
         "--quick: coarser schedules, fewer rays, a 5,000-sample fit subsample "
@@ -232,8 +284,8 @@ DemoResult RunDemo(const DemoOptions& options) {
 void PrintDemoSummary(std::ostream& out, const DemoResult& result) {
   out << "Bundled real measurements (" << result.bundled.size() << " files):\n";
   PrintSummaryTable(out, result.bundled);
-  out << "\nFits (--model auto over lambert, phong, blinn-phong, blinn-phong-exact; energy "
-         "integrated over 90 incidence angles):\n";
+  out << "\nFits (--model auto --loss log over lambert, phong, blinn-phong, blinn-phong-exact; "
+         "energy integrated over 90 incidence angles):\n";
   char line[512];
   std::snprintf(line, sizeof(line), "%-16s %-9s %8s %-17s %10s %10s %-22s %-10s %7s\n", "dataset",
                 "kind", "samples", "chosen", "rmse", "log rmse", "max albedo r,g,b", "energy",

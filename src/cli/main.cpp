@@ -23,8 +23,8 @@ int main(int argc, char** argv) {
   const std::vector<brdf::cli::Command> commands = {
       brdf::cli::AddDemoCommand(app),    brdf::cli::AddInfoCommand(app),
       brdf::cli::AddConvertCommand(app), brdf::cli::AddMeasureCommand(app),
-      brdf::cli::AddFitCommand(app), brdf::cli::AddEnergyCommand(app),
-      brdf::cli::AddRenderCommand(app), brdf::cli::AddTonemapCommand(app),
+      brdf::cli::AddFitCommand(app),     brdf::cli::AddEnergyCommand(app),
+      brdf::cli::AddRenderCommand(app),  brdf::cli::AddTonemapCommand(app),
   };
 
   try {

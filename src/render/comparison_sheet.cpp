@@ -10,6 +10,33 @@
 namespace brdf {
 namespace {
 
+// Share of B's brightest luminance below which the error is taken relative to that floor.
+constexpr double kRelativeErrorFloor = 0.01;
+
+// Two previews side by side in one image, so that one pipeline run maps both identically.
+Image SideBySide(const Image& a, const Image& b) {
+  Image both(a.width + b.width, a.height, 0.0f);
+  for (int y = 0; y < a.height; ++y) {
+    std::copy(a.pixel(0, y), a.pixel(0, y) + int64_t{a.width} * Image::kChannels, both.pixel(0, y));
+    std::copy(b.pixel(0, y), b.pixel(0, y) + int64_t{b.width} * Image::kChannels,
+              both.pixel(a.width, y));
+  }
+  return both;
+}
+
+// Columns [first, first + width) of an 8-bit image.
+Image8 Columns(const Image8& image, int first, int width) {
+  Image8 part;
+  part.width = width;
+  part.height = image.height;
+  part.rgb.resize(int64_t{width} * image.height * 3);
+  for (int y = 0; y < image.height; ++y) {
+    const uint8_t* row = image.rgb.data() + (int64_t{y} * image.width + first) * 3;
+    std::copy(row, row + int64_t{width} * 3, part.rgb.data() + int64_t{y} * width * 3);
+  }
+  return part;
+}
+
 constexpr int kLabelHeight = 28;
 constexpr int kBarWidth = 70;
 
@@ -42,9 +69,10 @@ void Label(cv::Mat& sheet, const std::string& text, int x, int width) {
 
 std::string ComparisonSheet::Summary() const {
   char buffer[160];
-  std::snprintf(buffer, sizeof(buffer),
-                "relative luminance error |A-B|/B: mean %.3g, max %.3g (colour bar 0..%g)",
-                mean_relative_error, max_relative_error, colour_bar_top);
+  std::snprintf(
+      buffer, sizeof(buffer),
+      "relative luminance error |A-B|/max(B, 1%% of max B): mean %.3g, max %.3g (colour bar 0..%g)",
+      mean_relative_error, max_relative_error, colour_bar_top);
   return buffer;
 }
 
@@ -57,8 +85,17 @@ ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& displ
     throw ComputeError("comparison sheet: the two previews differ in size");
   }
   ComparisonSheet result;
-  // Relative error where both spheres have a pixel; a black B pixel (no light there) counts
-  // only if A is not black too.
+  // Relative error where both spheres have a pixel. The denominator is floored at 1% of B's
+  // brightest pixel: where B is nearly black (a fit with rho_d = 0 away from its highlight) a
+  // bare |A-B|/B reaches 1e13 and the colour bar shows nothing else.
+  double brightest_b = 0.0;
+  for (int y = 0; y < size_y; ++y) {
+    for (int x = 0; x < size_x; ++x) {
+      const float* b = radiance_b.pixel(x, y);
+      if (b[3] != 0.0f) brightest_b = std::max<double>(brightest_b, PixelLuminance(b));
+    }
+  }
+  const double floor_b = kRelativeErrorFloor * brightest_b;
   cv::Mat error(size_y, size_x, CV_32F, cv::Scalar(0));
   cv::Mat on_sphere(size_y, size_x, CV_8U, cv::Scalar(0));
   double sum = 0.0;
@@ -70,8 +107,9 @@ ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& displ
       if (a[3] == 0.0f || b[3] == 0.0f) continue;
       const double luminance_a = PixelLuminance(a), luminance_b = PixelLuminance(b);
       const double difference = std::abs(luminance_a - luminance_b);
+      const double denominator = std::max(luminance_b, floor_b);
       const double relative =
-          luminance_b > 0.0 ? difference / luminance_b : (difference > 0.0 ? 1.0 : 0.0);
+          denominator > 0.0 ? difference / denominator : (difference > 0.0 ? 1.0 : 0.0);
       error.at<float>(y, x) = static_cast<float>(relative);
       on_sphere.at<uint8_t>(y, x) = 255;
       result.max_relative_error = std::max(result.max_relative_error, relative);
@@ -120,6 +158,18 @@ ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& displ
   cv::Mat rgb(sheet.rows, sheet.cols, CV_8UC3, result.sheet.rgb.data());
   cv::cvtColor(sheet, rgb, cv::COLOR_BGR2RGB);  // writes into result.sheet.rgb
   return result;
+}
+
+ComparisonSheet ToneMapAndCompare(const Image& radiance_a, const Image& radiance_b,
+                                  const ToneOptions& tone, const std::string& label_a,
+                                  const std::string& label_b, ToneResult* toned) {
+  ToneResult result = RunTonePipeline(SideBySide(radiance_a, radiance_b), tone);
+  const int width = radiance_a.width;
+  ComparisonSheet sheet =
+      MakeComparisonSheet(Columns(result.display, 0, width), Columns(result.display, width, width),
+                          radiance_a, radiance_b, label_a, label_b);
+  if (toned != nullptr) *toned = std::move(result);
+  return sheet;
 }
 
 }  // namespace brdf

@@ -1,12 +1,13 @@
 // Side-by-side comparison of two previews rendered under identical light (DESIGN §8: "measured
 // vs fitted spheres with a false-colour error map"): A, B, the relative luminance error
-// |Y_A - Y_B| / Y_B in false colour, and a labelled colour bar.
+// |Y_A - Y_B| / max(Y_B, 1% of B's brightest) in false colour, and a labelled colour bar.
 #pragma once
 
 #include <string>
 
 #include "hdr/image.h"
 #include "hdr/image_files.h"
+#include "hdr/pipeline.h"
 
 namespace brdf {
 
@@ -25,5 +26,11 @@ struct ComparisonSheet {
 ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& display_b,
                                     const Image& radiance_a, const Image& radiance_b,
                                     const std::string& label_a, const std::string& label_b);
+
+// Two radiance images (same size) through one run of the tone pipeline side by side, so both
+// are mapped identically, then the sheet. `toned` (may be null) receives the pipeline's result.
+ComparisonSheet ToneMapAndCompare(const Image& radiance_a, const Image& radiance_b,
+                                  const ToneOptions& tone, const std::string& label_a,
+                                  const std::string& label_b, ToneResult* toned = nullptr);
 
 }  // namespace brdf

@@ -73,7 +73,7 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
       const std::optional<Vec3> normal = SphereNormal(x, y, size);
       if (!normal) continue;
       ++row_pixels;
-      const ShadingFrame frame(*normal);
+      const Frame frame = Frame::FromZ(*normal);
       const Vec3 wo = frame.ToLocal(wo_world);
       Rgb radiance = Rgb::Zero();
 
@@ -93,8 +93,11 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
         for (int s = 0; s < options.spp; ++s) {
           Rgb estimate = Rgb::Zero();
           // Environment (light) sampling.
-          const Environment::Sample light =
-              environment->SampleDirection(random.Uniform(), random.Uniform());
+          // Draws in separate statements: argument evaluation order is unspecified, and the
+          // image must not depend on the compiler.
+          const double v0 = random.Uniform();
+          const double v1 = random.Uniform();
+          const Environment::Sample light = environment->SampleDirection(v0, v1);
           const Vec3 wi_light = frame.ToLocal(light.direction);
           if (wi_light.z() > 0.0 && light.pdf > 0.0) {
             const double weight = PowerHeuristic(light.pdf, CosineHemispherePdf(wi_light.z()));
@@ -102,10 +105,12 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
                         (wi_light.z() * weight / light.pdf);
           }
           // Cosine (BRDF-proportional for the diffuse part) sampling.
-          const Vec3 wi_cosine = SampleCosineHemisphere(random.Uniform(), random.Uniform());
+          const double u0 = random.Uniform();
+          const double u1 = random.Uniform();
+          const Vec3 wi_cosine = SampleCosineHemisphere(Point2(u0, u1));
           const double pdf_cosine = CosineHemispherePdf(wi_cosine.z());
           if (pdf_cosine > 0.0) {
-            const Vec3 world = frame.ToWorld(wi_cosine);
+            const Vec3 world = frame.FromLocal(wi_cosine);
             double pdf_light = 0.0;
             const Rgb radiance_in = environment->RadianceAndPdf(world, &pdf_light);
             const double weight = PowerHeuristic(pdf_cosine, pdf_light);
