@@ -25,19 +25,8 @@ namespace {
 const char* kTruth = "blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:m=300";
 
 Measurement MerlMeasurement(const Model& truth) {
-  MerlTable table;
-  for (int h = 0; h < MerlTable::kThetaHalfBins; ++h) {
-    for (int d = 0; d < MerlTable::kThetaDiffBins; ++d) {
-      for (int p = 0; p < MerlTable::kPhiDiffBins; ++p) {
-        Vec3 wi, wo;
-        FromHalfDiff(MerlTable::CellCentre(h, d, p), &wi, &wo);
-        const Rgb value = truth.Eval(wi, wo);
-        for (int c = 0; c < 3; ++c) {
-          table.raw(c, MerlTable::CellIndex(h, d, p)) = value[c] / MerlTable::kScale[c];
-        }
-      }
-    }
-  }
+  const MerlTable table =
+      MerlTable::Tabulate([&](const Vec3& wi, const Vec3& wo) { return truth.Eval(wi, wo); });
   Measurement measurement = table.ToMeasurement();
   measurement.format = "merl";
   return measurement;

@@ -23,19 +23,8 @@ const std::string& MerlPath() {
                  : (std::filesystem::temp_directory_path() / "brdfkit-bench.binary").string();
     if (!std::filesystem::exists(file)) {
       const Model model = ParseModel("blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.4:m=300");
-      MerlTable table;
-      for (int h = 0; h < MerlTable::kThetaHalfBins; ++h) {
-        for (int d = 0; d < MerlTable::kThetaDiffBins; ++d) {
-          for (int p = 0; p < MerlTable::kPhiDiffBins; ++p) {
-            Vec3 wi, wo;
-            FromHalfDiff(MerlTable::CellCentre(h, d, p), &wi, &wo);
-            const Rgb value = model.Eval(wi, wo);
-            for (int c = 0; c < 3; ++c) {
-              table.raw(c, MerlTable::CellIndex(h, d, p)) = value[c] / MerlTable::kScale[c];
-            }
-          }
-        }
-      }
+      const MerlTable table =
+          MerlTable::Tabulate([&](const Vec3& wi, const Vec3& wo) { return model.Eval(wi, wo); });
       table.Write(file);
     }
     return file;

@@ -90,6 +90,23 @@ TEST(Merl, MeasurementDirectionsAreTheCellCentres) {
   }
 }
 
+TEST(Merl, TabulateValuesEveryCellAtItsCentre) {
+  const Model model = ParseModel("phong:rho_d=0.2,0.3,0.4:rho_s=0.3:n=20");
+  const MerlTable table =
+      MerlTable::Tabulate([&](const Vec3& wi, const Vec3& wo) { return model.Eval(wi, wo); });
+  for (int h : {3, 40, 80}) {
+    for (int d : {5, 50}) {
+      for (int p : {10, 100}) {
+        Vec3 wi, wo;
+        FromHalfDiff(MerlTable::CellCentre(h, d, p), &wi, &wo);
+        const Rgb expected = model.Eval(wi, wo);
+        const Rgb looked_up = table.Lookup(wi, wo);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(looked_up[c], expected[c], 1e-12 * expected[c]);
+      }
+    }
+  }
+}
+
 TEST(Merl, AnalyticTableSurvivesWriteAndRead) {
   ScratchDir dir;
   const Model model = ParseModel("blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.5:m=50");

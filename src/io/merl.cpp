@@ -131,6 +131,21 @@ void MerlTable::Write(const std::string& path) const {
       /*binary=*/true);
 }
 
+MerlTable MerlTable::Tabulate(const std::function<Rgb(const Vec3& wi, const Vec3& wo)>& brdf) {
+  MerlTable table;
+  tbb::parallel_for(0, kThetaHalfBins, [&](int h) {
+    for (int d = 0; d < kThetaDiffBins; ++d) {
+      for (int p = 0; p < kPhiDiffBins; ++p) {
+        Vec3 wi, wo;
+        FromHalfDiff(CellCentre(h, d, p), &wi, &wo);
+        const Rgb value = brdf(wi, wo);
+        for (int c = 0; c < 3; ++c) table.raw(c, CellIndex(h, d, p)) = value[c] / kScale[c];
+      }
+    }
+  });
+  return table;
+}
+
 Measurement MerlTable::ToMeasurement() const {
   // Cell-centre directions from per-bin sines and cosines: the same rotation as FromHalfDiff
   // (wi = Ry(theta_h) d with phi_h = 0; wo = 2 (wi.h) h - wi) without 1.4 million sets of trig

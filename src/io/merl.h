@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,10 @@ class MerlTable {
   // no sample stay missing. Warnings say how many samples were off the cell centres and how
   // many cells are empty.
   static MerlTable FromMeasurement(const Measurement& measurement, WriteReport* report);
+  // Every cell valued by `brdf` (sr^-1) at its centre directions, phi_h = 0, including cells
+  // below the horizon (the function decides what to return there).
+  static MerlTable Tabulate(const std::function<Rgb(const Vec3& wi, const Vec3& wo)>& brdf);
+
   // One sample per cell at the cell centre, phi_h = 0. Cells with a negative value, or whose
   // centre directions fall at or below the horizon, are flagged missing.
   Measurement ToMeasurement() const;
