@@ -4,16 +4,6 @@
 
 namespace brdf::gonio {
 
-nlohmann::json ParseJsonText(const std::string& text, const std::string& origin,
-                             const std::string& expected) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw ByteError(origin, static_cast<int64_t>(error.byte) - 1,
-                    "not valid JSON, expected " + expected);
-  }
-}
-
 JsonFields::JsonFields(const nlohmann::json& object, std::string prefix, const std::string& origin)
     : object_(object), prefix_(std::move(prefix)), origin_(origin) {
   if (!object_.is_object()) Fail(prefix_.empty() ? "top level" : prefix_, "expected an object");

@@ -8,11 +8,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace brdf::gonio {
+#include "core/json_text.h"
 
-// Parses JSON text; malformed JSON throws ByteError at the offending byte of `origin`.
-nlohmann::json ParseJsonText(const std::string& text, const std::string& origin,
-                             const std::string& expected);
+namespace brdf::gonio {
 
 class JsonFields {
  public:

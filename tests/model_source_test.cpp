@@ -39,6 +39,10 @@ TEST(ModelSource, BrokenReportsNameTheFile) {
       {"missing-param.json", R"({"model": "phong", "params": {"rho_d": 0.5, "rho_s": 0.1}})"},
       {"bad-shape.json", R"({"model": "phong", "params": {"rho_d": [1, 2], "rho_s": 0, "n": 1}})"},
       {"negative.json", R"({"model": "lambert", "params": {"rho_d": -0.5}})"},
+      // Found by fuzz_model_string: a number beyond double range made nlohmann throw
+      // out_of_range, which escaped as an internal error.
+      {"huge-number.json", "8888888888888E8888888_\xdb________Q______________"},
+      {"huge-field.json", R"({"model": "lambert", "params": {"rho_d": 1e999}})"},
   };
   for (const auto& [name, contents] : cases) {
     const std::string path = dir.Write(name, contents);

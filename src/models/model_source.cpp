@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.h"
+#include "core/json_text.h"
 #include "core/text.h"
 #include "models/model_string.h"
 
@@ -28,13 +29,7 @@ bool IsFitReportPath(const std::string& spec) {
 
 Model ReadFitReportModel(const std::string& path) {
   const std::string text = ReadFileBytes(path, kMaxReportBytes);
-  nlohmann::json report;
-  try {
-    report = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& error) {
-    throw ByteError(path, static_cast<int64_t>(error.byte) - 1,
-                    "not valid JSON, expected a fit report");
-  }
+  const nlohmann::json report = ParseJsonText(text, path, "a fit report");
   if (!report.is_object() || !report.contains("model") || !report["model"].is_string()) {
     throw InputError(path, "expected a fit report with a \"model\" name (DESIGN §6)");
   }
