@@ -4,14 +4,12 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <limits>
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "energy/measured.h"
 #include "io/formats.h"
-#include "io/merl.h"
 #include "models/model_source.h"
 
 namespace brdf {
@@ -27,83 +25,62 @@ class ModelMaterial : public Material {
   Model model_;
 };
 
+// A MERL table, looked up cell by cell through the shared measured-data integrand
+// (energy/measured.h); NaN where the cell is missing.
 class MerlMaterial : public Material {
  public:
-  MerlMaterial(std::string path, MerlTable table)
-      : path_(std::move(path)), table_(std::move(table)) {}
+  explicit MerlMaterial(MeasuredBrdf measured) : measured_(std::move(measured)) {}
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override {
     if (wi.z() <= 0.0 || wo.z() <= 0.0) return Rgb::Zero();
-    return table_.Lookup(wi, wo);
+    return measured_.brdf(wi, wo).value;
   }
-  std::string Describe() const override { return path_ + " (MERL table lookup)"; }
+  std::string Describe() const override { return measured_.source + " (MERL table lookup)"; }
 
  private:
-  std::string path_;
-  MerlTable table_;
+  MeasuredBrdf measured_;
 };
 
-// Nearest neighbour on a half/difference grid (see material.h).
-class NearestNeighbourMaterial : public Material {
+// Scattered data: the shared inverse-distance interpolant (energy/measured.h), tabulated once
+// at the centres of a 32^3 half/difference grid so that a preview's millions of lookups cost
+// one index each (see material.h).
+class TabulatedMaterial : public Material {
  public:
   static constexpr int kBins = 32;
 
-  NearestNeighbourMaterial(const Measurement& measurement)
+  TabulatedMaterial(const Measurement& measurement)
       : description_(measurement.source + " (" + measurement.format +
-                     ", nearest neighbour on a 32^3 half/difference grid)") {
-    std::vector<std::array<double, 3>> coordinates;
-    std::vector<Rgb> values;
-    for (const Sample& sample : measurement.samples) {
-      if (sample.missing || !sample.value.allFinite()) continue;
-      if (sample.wi.z() <= 0.0 || sample.wo.z() <= 0.0) continue;
-      coordinates.push_back(Coordinates(sample.wi, sample.wo));
-      values.push_back(sample.value);
-    }
-    if (values.empty()) {
-      throw InputError(measurement.source, "no present sample above the horizon to render");
-    }
+                     ", inverse-distance interpolation tabulated on a 32^3 half/difference "
+                     "grid)") {
+    const MeasuredBrdf measured = ScatteredMeasuredBrdf(measurement);
     cells_.resize(kBins * kBins * kBins);
     tbb::parallel_for(0, kBins * kBins * kBins, [&](int cell) {
-      const std::array<double, 3> centre = CellCentre(cell);
-      double best = std::numeric_limits<double>::infinity();
-      for (size_t k = 0; k < coordinates.size(); ++k) {
-        double distance = 0.0;
-        for (int d = 0; d < 3; ++d) {
-          distance += (coordinates[k][d] - centre[d]) * (coordinates[k][d] - centre[d]);
-        }
-        if (distance < best) {
-          best = distance;
-          cells_[cell] = values[k];
-        }
-      }
+      const int index[3] = {cell / (kBins * kBins), (cell / kBins) % kBins, cell % kBins};
+      HalfDiff centre;
+      centre.theta_h = (index[0] + 0.5) / kBins * kRange[0];
+      centre.theta_d = (index[1] + 0.5) / kBins * kRange[1];
+      centre.phi_d = (index[2] + 0.5) / kBins * kRange[2];
+      Vec3 wi, wo;
+      FromHalfDiff(centre, &wi, &wo);
+      // A cell whose centre lies below the horizon still holds above-horizon pairs near its
+      // edge: fill it too, from the nearest data (the interpolant accepts any directions).
+      cells_[cell] = measured.brdf(wi, wo).value;
     });
   }
 
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override {
     if (wi.z() <= 0.0 || wo.z() <= 0.0) return Rgb::Zero();
-    return cells_[CellOf(Coordinates(wi, wo))];
+    const HalfDiff hd = ToHalfDiff(wi, wo);
+    const double coordinates[3] = {hd.theta_h, hd.theta_d, std::fmod(hd.phi_d + 2 * kPi, kPi)};
+    int index[3];
+    for (int d = 0; d < 3; ++d) {
+      index[d] = std::clamp(static_cast<int>(coordinates[d] / kRange[d] * kBins), 0, kBins - 1);
+    }
+    return cells_[(index[0] * kBins + index[1]) * kBins + index[2]];
   }
   std::string Describe() const override { return description_; }
 
  private:
   static constexpr double kRange[3] = {kPi / 2, kPi / 2, kPi};
-
-  static std::array<double, 3> Coordinates(const Vec3& wi, const Vec3& wo) {
-    const HalfDiff hd = ToHalfDiff(wi, wo);
-    return {hd.theta_h, hd.theta_d, std::fmod(hd.phi_d + 2 * kPi, kPi)};
-  }
-  static std::array<double, 3> CellCentre(int cell) {
-    const int index[3] = {cell / (kBins * kBins), (cell / kBins) % kBins, cell % kBins};
-    std::array<double, 3> centre;
-    for (int d = 0; d < 3; ++d) centre[d] = (index[d] + 0.5) / kBins * kRange[d];
-    return centre;
-  }
-  static int CellOf(const std::array<double, 3>& coordinates) {
-    int index[3];
-    for (int d = 0; d < 3; ++d) {
-      index[d] = std::clamp(static_cast<int>(coordinates[d] / kRange[d] * kBins), 0, kBins - 1);
-    }
-    return (index[0] * kBins + index[1]) * kBins + index[2];
-  }
 
   std::string description_;
   std::vector<Rgb> cells_;
@@ -128,8 +105,8 @@ std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
                      "blinn-phong, blinn-phong-exact)");
   }
   const FileFormat& format = DetectFormat(spec);
-  if (format.name == "merl") return std::make_unique<MerlMaterial>(spec, MerlTable::Read(spec));
-  return std::make_unique<NearestNeighbourMaterial>(ReadMeasurement(spec));
+  if (format.name == "merl") return std::make_unique<MerlMaterial>(LoadMeasuredBrdf(spec));
+  return std::make_unique<TabulatedMaterial>(ReadMeasurement(spec));
 }
 
 }  // namespace brdf

@@ -4,11 +4,11 @@
 // Measured data:
 //   * MERL tables are looked up cell by cell (MerlTable::Lookup: the half/difference cell
 //     containing (wi, wo), piecewise constant; missing cells render black and are counted).
-//   * Scattered measurements (Cornell, Zemax, native CSV) use nearest-neighbour interpolation
-//     on a grid: the isotropic half/difference space (theta_h, theta_d in [0, pi/2], phi_d
-//     folded into [0, pi) by reciprocity) is cut into 32 x 32 x 32 cells, and each cell takes
-//     the value of the present sample nearest to its centre (Euclidean distance in radians).
-//     Simple and predictable; it ignores anisotropy and shows the sampling pattern as facets.
+//   * Scattered measurements (Cornell, Zemax, native CSV) use the same inverse-distance
+//     interpolant as `brdf energy` (energy/measured.h), tabulated once at the cell centres of
+//     the isotropic half/difference space (theta_h, theta_d in [0, pi/2], phi_d folded into
+//     [0, pi) by reciprocity) cut into 32 x 32 x 32 cells; a lookup is then one index. The
+//     grid is piecewise constant: a lobe narrower than a cell (2.8 deg in theta_h) is smeared.
 #pragma once
 
 #include <memory>
