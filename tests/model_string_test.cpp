@@ -63,6 +63,12 @@ TEST(ModelString, GreyShorthandFillsEveryChannel) {
   EXPECT_EQ(model.ToString(), "lambert:rho_d=0.25");
 }
 
+TEST(ModelString, RoundedFormIsForPeople) {
+  const Model model = ParseModel("phong:rho_d=0.123456789,0.5,1e-7:rho_s=0.04:n=123456.7");
+  EXPECT_EQ(model.ToString(4), "phong:rho_d=0.1235,0.5,1e-07:rho_s=0.04:n=1.235e+05");
+  EXPECT_EQ(ParseModel(model.ToString()).params(), model.params());  // the default round-trips
+}
+
 TEST(ModelString, OmittedKeysTakeTheRegistryDefaults) {
   for (const ModelInfo& info : ModelRegistry()) {
     EXPECT_EQ(ParseModel(info.name).params(), info.DefaultParams()) << info.name;

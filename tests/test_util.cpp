@@ -67,16 +67,20 @@ int CountLines(const std::string& text) {
   return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
 }
 
-CommandResult RunBrdf(const std::string& arguments) {
+CommandResult RunCommand(const std::string& command) {
   ScratchDir capture;
-  const std::string command = std::string("'") + BRDFKIT_BINARY + "' " + arguments + " >'" +
-                              capture.File("out") + "' 2>'" + capture.File("err") + "' </dev/null";
-  const int status = std::system(command.c_str());
+  const std::string line =
+      command + " >'" + capture.File("out") + "' 2>'" + capture.File("err") + "' </dev/null";
+  const int status = std::system(line.c_str());
   CommandResult result;
   if (status != -1 && WIFEXITED(status)) result.exit_status = WEXITSTATUS(status);
   result.out = ReadFileText(capture.File("out"));
   result.err = ReadFileText(capture.File("err"));
   return result;
+}
+
+CommandResult RunBrdf(const std::string& arguments) {
+  return RunCommand(std::string("'") + BRDFKIT_BINARY + "' " + arguments);
 }
 
 }  // namespace brdf::testing

@@ -41,6 +41,8 @@ struct CommandResult {
   std::string out;       // stdout
   std::string err;       // stderr
 };
+// Runs a shell command line, no stdin, capturing stdout and stderr.
+CommandResult RunCommand(const std::string& command);
 // Runs the brdf binary with `arguments` (a shell-quoted string), no stdin.
 CommandResult RunBrdf(const std::string& arguments);
 

@@ -82,7 +82,7 @@ void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
     out << "<tr" << (chosen ? " class=\"chosen\"" : "") << "><td>" << Escape(fit.model.name())
         << (chosen ? " &#9733;" : "") << "</td><td>" << Number(fit.bic, "%.6g") << "</td><td>"
         << Number(fit.metrics.rmse) << "</td><td>" << Number(fit.metrics.log_rmse)
-        << "</td><td><code>" << Escape(fit.model.ToString()) << "</code></td><td>"
+        << "</td><td><code>" << Escape(fit.model.ToString(4)) << "</code></td><td>"
         << Triple(fit.energy.max_albedo) << "</td><td>"
         << (fit.energy.conserving ? "conserving" : "<b>NOT conserving</b>") << "</td><td>"
         << (fit.converged ? "yes" : "<b>no</b>") << "</td><td><a href=\""

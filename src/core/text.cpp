@@ -70,6 +70,13 @@ std::string FormatNumber(double value) {
   return std::string(buffer, result.ptr);
 }
 
+std::string FormatNumber(double value, int significant) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value,
+                                    std::chars_format::general, significant);
+  return std::string(buffer, result.ptr);
+}
+
 std::string_view Trim(std::string_view text) {
   const char* kSpace = " \t\r\n\f\v";
   const size_t first = text.find_first_not_of(kSpace);

@@ -45,6 +45,8 @@ std::vector<std::string_view> SplitFields(std::string_view line, std::string_vie
 
 // Shortest decimal text that reads back to exactly `value` (std::to_chars round trip).
 std::string FormatNumber(double value);
+// `value` rounded to `significant` digits, for people rather than for round trips.
+std::string FormatNumber(double value, int significant);
 
 std::string_view Trim(std::string_view text);
 bool StartsWith(std::string_view text, std::string_view prefix);

@@ -79,7 +79,7 @@ Model ParseModel(std::string_view text) {
   return Model(info, std::move(params));
 }
 
-std::string Model::ToString() const {
+std::string Model::ToString(int significant) const {
   std::string text = info_->name;
   for (const ParamInfo& param : info_->params) {
     text += ":" + param.name + "=";
@@ -89,7 +89,9 @@ std::string Model::ToString() const {
     }
     const int shown = grey ? 1 : param.channels;
     for (int c = 0; c < shown; ++c) {
-      text += (c ? "," : "") + FormatNumber(params_[param.slot + c]);
+      const double value = params_[param.slot + c];
+      text += (c ? "," : "") +
+              (significant > 0 ? FormatNumber(value, significant) : FormatNumber(value));
     }
   }
   return text;

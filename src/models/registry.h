@@ -67,8 +67,9 @@ class Model {
   Rgb Eval(const Vec3& wi, const Vec3& wo) const { return info_->eval(params_.data(), wi, wo); }
 
   // The canonical model string, e.g. "phong:rho_d=0.5:rho_s=0.04:n=100"; ParseModel reads it
-  // back to the same values (doubles printed with 17 significant digits).
-  std::string ToString() const;
+  // back to the same values (the shortest text that round-trips each double). With
+  // `significant` > 0 the values are rounded to that many digits, for tables people read.
+  std::string ToString(int significant = 0) const;
 
  private:
   const ModelInfo* info_;
