@@ -67,7 +67,8 @@ Command AddRenderCommand(CLI::App& parent) {
   app->add_option("--size", options->render.size, "image width and height in pixels")
       ->capture_default_str();
   app->add_option("--spp", options->render.spp,
-                  "environment samples per pixel (each technique: light and cosine, MIS)")
+                  "environment samples per pixel (each technique: light, cosine and, for models, "
+                  "the specular lobe; MIS)")
       ->capture_default_str();
   app->add_option("--seed", options->render.seed, "random seed (same image for any thread count)")
       ->capture_default_str();

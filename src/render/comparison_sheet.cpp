@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "core/errors.h"
 
@@ -68,11 +69,12 @@ void Label(cv::Mat& sheet, const std::string& text, int x, int width) {
 }  // namespace
 
 std::string ComparisonSheet::Summary() const {
-  char buffer[160];
+  char buffer[200];
   std::snprintf(
       buffer, sizeof(buffer),
-      "relative luminance error |A-B|/max(B, 1%% of max B): mean %.3g, max %.3g (colour bar 0..%g)",
-      mean_relative_error, max_relative_error, colour_bar_top);
+      "relative luminance error |A-B|/max(B, 1%% of max B): mean %.3g, 99th percentile %.3g, "
+      "max %.3g (colour bar 0..%g)",
+      mean_relative_error, p99_relative_error, max_relative_error, colour_bar_top);
   return buffer;
 }
 
@@ -100,6 +102,8 @@ ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& displ
   cv::Mat on_sphere(size_y, size_x, CV_8U, cv::Scalar(0));
   double sum = 0.0;
   int64_t count = 0;
+  std::vector<double> errors;
+  errors.reserve(static_cast<size_t>(size_x) * size_y);
   for (int y = 0; y < size_y; ++y) {
     for (int x = 0; x < size_x; ++x) {
       const float* a = radiance_a.pixel(x, y);
@@ -114,11 +118,20 @@ ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& displ
       on_sphere.at<uint8_t>(y, x) = 255;
       result.max_relative_error = std::max(result.max_relative_error, relative);
       sum += relative;
+      errors.push_back(relative);
       ++count;
     }
   }
   result.mean_relative_error = count > 0 ? sum / count : 0.0;
-  result.colour_bar_top = RoundUp125(result.max_relative_error);
+  // The colour bar spans the 99th percentile: a few Monte Carlo outliers (a sharp lobe found
+  // by one sample in thousands) would otherwise push every other pixel to the bottom colour.
+  if (!errors.empty()) {
+    const size_t rank = static_cast<size_t>(0.99 * static_cast<double>(errors.size() - 1));
+    std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(rank),
+                     errors.end());
+    result.p99_relative_error = errors[rank];
+  }
+  result.colour_bar_top = RoundUp125(result.p99_relative_error);
 
   cv::Mat error8, error_colour;
   error.convertTo(error8, CV_8U, 255.0 / result.colour_bar_top);

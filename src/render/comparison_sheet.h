@@ -14,6 +14,7 @@ namespace brdf {
 struct ComparisonSheet {
   Image8 sheet;
   double max_relative_error = 0.0;  // over pixels on both spheres
+  double p99_relative_error = 0.0;  // its 99th percentile
   double mean_relative_error = 0.0;
   double colour_bar_top = 0.0;  // the error shown as the top of the colour bar
   std::string Summary() const;
@@ -22,7 +23,7 @@ struct ComparisonSheet {
 // `display_a`, `display_b`: the two previews after the HDR pipeline (same size);
 // `radiance_a`, `radiance_b`: their radiance (alpha 0 off the sphere). The error map uses the
 // viridis colour map (perceptually uniform, readable in grey) from 0 to a round number at or
-// above the largest error.
+// above the 99th percentile of the error (larger errors saturate).
 ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& display_b,
                                     const Image& radiance_a, const Image& radiance_b,
                                     const std::string& label_a, const std::string& label_b);

@@ -9,6 +9,7 @@
 #include "core/angles.h"
 #include "core/errors.h"
 #include "energy/measured.h"
+#include "energy/model_terms.h"
 #include "io/formats.h"
 #include "models/model_source.h"
 
@@ -17,12 +18,19 @@ namespace {
 
 class ModelMaterial : public Material {
  public:
-  explicit ModelMaterial(Model model) : model_(std::move(model)) {}
+  explicit ModelMaterial(Model model) : model_(std::move(model)) {
+    // The albedo split of `brdf energy` already knows each model's lobe frame and exponent.
+    for (const AlbedoTerm& term : AlbedoTerms(model_)) {
+      if (term.name == "lobe" && term.scale > 0.0) lobe_ = term.coordinates;
+    }
+  }
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override { return model_.Eval(wi, wo); }
   std::string Describe() const override { return model_.ToString(); }
+  std::optional<LobeCoordinates> SpecularLobe() const override { return lobe_; }
 
  private:
   Model model_;
+  std::optional<LobeCoordinates> lobe_;
 };
 
 // A MERL table, looked up cell by cell through the shared measured-data integrand

@@ -12,9 +12,11 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/vec.h"
+#include "energy/integrand.h"
 
 namespace brdf {
 
@@ -25,6 +27,10 @@ class Material {
   virtual Rgb Eval(const Vec3& wi, const Vec3& wo) const = 0;
   // What it is, for the summary line: a model string or "FILE (format, interpolation)".
   virtual std::string Describe() const = 0;
+  // The specular lobe the renderer draws directions from, besides the environment and the
+  // cosine (a lobe far narrower than either would otherwise be found only by chance: one
+  // bright pixel in thousands). None for measured data and for lobe-free models.
+  virtual std::optional<LobeCoordinates> SpecularLobe() const { return std::nullopt; }
 };
 
 // A model string or FIT.json (LoadModel), else a measurement file. Throws UsageError /

@@ -9,15 +9,18 @@
 #include "core/colour.h"
 #include "core/errors.h"
 #include "core/progress.h"
+#include "energy/monte_carlo.h"
 #include "render/sampling.h"
 
 namespace brdf {
 namespace {
 
-// Power heuristic with exponent 2 (Veach & Guibas 1995) for one sample of each technique.
-double PowerHeuristic(double pdf_this, double pdf_other) {
-  const double a = pdf_this * pdf_this, b = pdf_other * pdf_other;
-  return a + b > 0.0 ? a / (a + b) : 0.0;
+// Power heuristic with exponent 2 (Veach & Guibas 1995) for one sample of each technique; a
+// technique that is not used has pdf 0.
+double PowerHeuristic(double pdf_this, double pdf_other, double pdf_third = 0.0) {
+  const double a = pdf_this * pdf_this;
+  const double sum = a + pdf_other * pdf_other + pdf_third * pdf_third;
+  return sum > 0.0 ? a / sum : 0.0;
 }
 
 Rgb FiniteOrZero(const Rgb& value, int64_t* missing) {
@@ -66,6 +69,11 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
   result.luminance_std_error.assign(int64_t{size} * size, 0.0f);
   std::atomic<int64_t> sphere_pixels{0}, missing{0};
   const Vec3 wo_world(0.0, 0.0, 1.0);
+  const std::optional<LobeCoordinates> lobe = material.SpecularLobe();
+  // Density of the lobe technique at wi (0 when the material has no lobe).
+  auto lobe_pdf = [&](const Vec3& wo, const Vec3& wi) {
+    return lobe ? StrategyPdf(*lobe, wo, wi) : 0.0;
+  };
 
   tbb::parallel_for(0, size, [&](int y) {
     int64_t row_pixels = 0, row_missing = 0;
@@ -100,7 +108,8 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
           const Environment::Sample light = environment->SampleDirection(v0, v1);
           const Vec3 wi_light = frame.ToLocal(light.direction);
           if (wi_light.z() > 0.0 && light.pdf > 0.0) {
-            const double weight = PowerHeuristic(light.pdf, CosineHemispherePdf(wi_light.z()));
+            const double weight = PowerHeuristic(light.pdf, CosineHemispherePdf(wi_light.z()),
+                                                 lobe_pdf(wo, wi_light));
             estimate += FiniteOrZero(material.Eval(wi_light, wo), &row_missing) * light.radiance *
                         (wi_light.z() * weight / light.pdf);
           }
@@ -113,9 +122,25 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
             const Vec3 world = frame.FromLocal(wi_cosine);
             double pdf_light = 0.0;
             const Rgb radiance_in = environment->RadianceAndPdf(world, &pdf_light);
-            const double weight = PowerHeuristic(pdf_cosine, pdf_light);
+            const double weight = PowerHeuristic(pdf_cosine, pdf_light, lobe_pdf(wo, wi_cosine));
             estimate += FiniteOrZero(material.Eval(wi_cosine, wo), &row_missing) * radiance_in *
                         (wi_cosine.z() * weight / pdf_cosine);
+          }
+          // Lobe sampling, for models with a specular lobe.
+          if (lobe) {
+            const double w0 = random.Uniform();
+            const double w1 = random.Uniform();
+            const Vec3 wi_lobe = SampleStrategy(*lobe, wo, Point2(w0, w1));
+            const double pdf = lobe_pdf(wo, wi_lobe);
+            if (wi_lobe.z() > 0.0 && pdf > 0.0) {
+              double pdf_light = 0.0;
+              const Rgb radiance_in =
+                  environment->RadianceAndPdf(frame.FromLocal(wi_lobe), &pdf_light);
+              const double weight =
+                  PowerHeuristic(pdf, pdf_light, CosineHemispherePdf(wi_lobe.z()));
+              estimate += FiniteOrZero(material.Eval(wi_lobe, wo), &row_missing) * radiance_in *
+                          (wi_lobe.z() * weight / pdf);
+            }
           }
           sum += estimate;
           const double luminance = Luminance(estimate);
