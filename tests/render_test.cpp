@@ -213,6 +213,40 @@ TEST(Render, MeasuredLambertRendersLikeTheModel) {
   }
 }
 
+TEST(Render, MeasuredGlossyDataGetALobeToSampleDiffuseDataNone) {
+  // Scattered samples of blinn-phong m = 100 on a 2.5-degree grid: the table's half-vector
+  // profile has the lobe's half width (cos^100 = 1/2 at 6.7 deg), read to the resolution of
+  // the 2.8-degree cells, so the estimated exponent lies within a factor of two of 100.
+  testing::ScratchDir dir;
+  for (const char* spec : {"blinn-phong:rho_d=0.2:rho_s=0.5:m=100", "lambert:rho_d=0.5"}) {
+    const Model model = ParseModel(spec);
+    Measurement measurement;
+    measurement.format = "native-csv";
+    for (double theta_i_deg = 0.0; theta_i_deg < 80.0; theta_i_deg += 10.0) {
+      for (double theta_o_deg = 0.0; theta_o_deg < 80.0; theta_o_deg += 2.5) {
+        for (double phi_o_deg = 0.0; phi_o_deg <= 180.0; phi_o_deg += 2.5) {
+          Sample sample;
+          sample.wi = SphericalDirection(theta_i_deg * kPi / 180.0, kPi);
+          sample.wo = SphericalDirection(theta_o_deg * kPi / 180.0, phi_o_deg * kPi / 180.0);
+          sample.value = model.Eval(sample.wi, sample.wo);
+          measurement.samples.push_back(sample);
+        }
+      }
+    }
+    const std::string file = dir.File(std::string(spec).substr(0, 5) + ".csv");
+    WriteMeasurement(measurement, file);
+    const std::optional<LobeCoordinates> lobe = LoadMaterial(file)->SpecularLobe();
+    if (model.name() == "lambert") {
+      EXPECT_FALSE(lobe.has_value());
+    } else {
+      ASSERT_TRUE(lobe.has_value());
+      EXPECT_EQ(lobe->frame, LobeFrame::kHalfVector);
+      EXPECT_GT(lobe->exponent, 50.0);
+      EXPECT_LT(lobe->exponent, 200.0);
+    }
+  }
+}
+
 TEST(Environment, SampledDensityMatchesPdfAndIntegratesToOne) {
   // A map with one bright pixel and a gradient: samples must follow pdf(omega).
   Image map(32, 16);

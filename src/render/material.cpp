@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/angles.h"
+#include "core/colour.h"
 #include "core/errors.h"
 #include "energy/measured.h"
 #include "energy/model_terms.h"
@@ -73,6 +74,7 @@ class TabulatedMaterial : public Material {
       // edge: fill it too, from the nearest data (the interpolant accepts any directions).
       cells_[cell] = measured.brdf(wi, wo).value;
     });
+    lobe_ = EstimateLobe();
   }
 
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override {
@@ -86,12 +88,40 @@ class TabulatedMaterial : public Material {
     return cells_[(index[0] * kBins + index[1]) * kBins + index[2]];
   }
   std::string Describe() const override { return description_; }
+  std::optional<LobeCoordinates> SpecularLobe() const override { return lobe_; }
 
  private:
   static constexpr double kRange[3] = {kPi / 2, kPi / 2, kPi};
 
+  // A half-vector lobe for the renderer to draw from, read off the table: the luminance
+  // profile over theta_h (averaged over phi_d and theta_d below 45 deg, away from grazing)
+  // falls from its peak at theta_h = 0 to half its height above the floor at theta_half; the
+  // power cosine with cos^m(theta_half) = 1/2 has the same half width. Any density keeps the
+  // estimate unbiased (MIS); a matching one only lowers the noise. None when the profile has no
+  // peak worth the name (less than twice its floor): a diffuse sample needs only the cosine.
+  std::optional<LobeCoordinates> EstimateLobe() const {
+    std::vector<double> profile(kBins, 0.0);
+    for (int h = 0; h < kBins; ++h) {
+      for (int d = 0; d < kBins / 2; ++d) {
+        for (int p = 0; p < kBins; ++p) {
+          profile[h] += Luminance(cells_[(h * kBins + d) * kBins + p]);
+        }
+      }
+    }
+    const double peak = profile[0];
+    const double floor = *std::min_element(profile.begin(), profile.end());
+    if (!(peak > 2.0 * floor) || !std::isfinite(peak)) return std::nullopt;
+    int h = 0;
+    while (h < kBins && profile[h] - floor > 0.5 * (peak - floor)) ++h;
+    const double bin = kRange[0] / kBins;
+    const double theta_half = std::max(h * bin, 0.5 * bin);
+    const double exponent = std::max(1.0, std::log(0.5) / std::log(std::cos(theta_half)));
+    return LobeCoordinates{LobeFrame::kHalfVector, exponent};
+  }
+
   std::string description_;
   std::vector<Rgb> cells_;
+  std::optional<LobeCoordinates> lobe_;
 };
 
 bool IsRegularFile(const std::string& path) {

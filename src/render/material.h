@@ -29,7 +29,8 @@ class Material {
   virtual std::string Describe() const = 0;
   // The specular lobe the renderer draws directions from, besides the environment and the
   // cosine (a lobe far narrower than either would otherwise be found only by chance: one
-  // bright pixel in thousands). None for measured data and for lobe-free models.
+  // bright pixel in thousands). Models give their own lobe; scattered measurements one read
+  // off their table; MERL tables and lobe-free models none.
   virtual std::optional<LobeCoordinates> SpecularLobe() const { return std::nullopt; }
 };
 
