@@ -81,11 +81,35 @@ class TabulatedMaterial : public Material {
     if (wi.z() <= 0.0 || wo.z() <= 0.0) return Rgb::Zero();
     const HalfDiff hd = ToHalfDiff(wi, wo);
     const double coordinates[3] = {hd.theta_h, hd.theta_d, std::fmod(hd.phi_d + 2 * kPi, kPi)};
-    int index[3];
+    // Trilinear between cell centres (nearest-cell lookups drew the grid as rings around a
+    // highlight). theta_h and theta_d clamp at the ends; phi_d is periodic with period pi.
+    int low[3], high[3];
+    double t[3];
     for (int d = 0; d < 3; ++d) {
-      index[d] = std::clamp(static_cast<int>(coordinates[d] / kRange[d] * kBins), 0, kBins - 1);
+      const double u = coordinates[d] / kRange[d] * kBins - 0.5;
+      const int below = static_cast<int>(std::floor(u));
+      t[d] = u - below;
+      if (d == 2) {
+        low[d] = (below + kBins) % kBins;
+        high[d] = (below + 1) % kBins;
+      } else {
+        low[d] = std::clamp(below, 0, kBins - 1);
+        high[d] = std::clamp(below + 1, 0, kBins - 1);
+      }
+      if (!(t[d] >= 0.0 && t[d] <= 1.0)) t[d] = 0.0;  // NaN directions: any corner
     }
-    return cells_[(index[0] * kBins + index[1]) * kBins + index[2]];
+    Rgb value = Rgb::Zero();
+    for (int corner = 0; corner < 8; ++corner) {
+      double weight = 1.0;
+      int index[3];
+      for (int d = 0; d < 3; ++d) {
+        const bool upper = (corner >> d) & 1;
+        index[d] = upper ? high[d] : low[d];
+        weight *= upper ? t[d] : 1.0 - t[d];
+      }
+      if (weight > 0.0) value += weight * cells_[(index[0] * kBins + index[1]) * kBins + index[2]];
+    }
+    return value;
   }
   std::string Describe() const override { return description_; }
   std::optional<LobeCoordinates> SpecularLobe() const override { return lobe_; }

@@ -7,8 +7,8 @@
 //   * Scattered measurements (Cornell, Zemax, native CSV) use the same inverse-distance
 //     interpolant as `brdf energy` (energy/measured.h), tabulated once at the cell centres of
 //     the isotropic half/difference space (theta_h, theta_d in [0, pi/2], phi_d folded into
-//     [0, pi) by reciprocity) cut into 32 x 32 x 32 cells; a lookup is then one index. The
-//     grid is piecewise constant: a lobe narrower than a cell (2.8 deg in theta_h) is smeared.
+//     [0, pi) by reciprocity) cut into 32 x 32 x 32 cells; a lookup is then a trilinear blend
+//     of eight cell values. A lobe narrower than a cell (2.8 deg in theta_h) is smeared.
 #pragma once
 
 #include <memory>
