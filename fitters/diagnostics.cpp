@@ -47,6 +47,12 @@ constexpr double kMaxOutlierFraction = 1e-3;
 // noise-free fit leaves ~1e-13 relative), and are never counted as outliers.
 constexpr double kRoundingFloor = 1e-9;
 
+// Outliers or misfit: samples beyond 5 scales that neighbour each other in file order more
+// often than independent flags would (expected pairs (n-1) p^2 for a flagged share p) by more
+// than 5 standard deviations of that count form a region the model cannot follow. 5 sigma, as
+// above, so that chance never decides it.
+constexpr double kClusteringScore = 5.0;
+
 // Mismatch: with honest sigmas the reduced chi-square is 1 +- sqrt(2/dof), 1 +- 0.01 for 20,000
 // residuals. Stated sigmas are estimates themselves (the virtual gonioreflectometer's leave
 // out arm jitter, docs/gonio.md), so the check allows them to be off by a factor of two: it
@@ -173,7 +179,16 @@ void CheckResidualWarnings(const Measurement& measurement, FitResult* result) {
   const ResidualCheck check = CheckResiduals(result->model, measurement);
   if (check.residuals == 0) return;
   const double fraction = static_cast<double>(check.beyond_5_scale) / check.residuals;
-  if (fraction > kMaxOutlierFraction) {
+  const bool clustered = check.clustering_z > kClusteringScore;
+  if (fraction > kMaxOutlierFraction && clustered) {
+    result->warnings.push_back(
+        "model mismatch: " + std::to_string(check.flagged_samples) +
+        " samples lie beyond 5 robust standard deviations of the fit in contiguous runs (" +
+        std::to_string(check.adjacent_flagged_pairs) + " neighbouring pairs, " +
+        Format("%.3g", check.clustering_z) +
+        " standard deviations more than isolated outliers would give): a region the model "
+        "cannot follow, not scattered bad readings");
+  } else if (fraction > kMaxOutlierFraction) {
     const std::string what = check.has_sigma ? "z-scores" : "relative residuals";
     result->warnings.push_back(
         "outliers: " + std::to_string(check.beyond_5_scale) + " of " +
@@ -183,7 +198,7 @@ void CheckResidualWarnings(const Measurement& measurement, FitResult* result) {
         (result->robust == Robust::kNone ? "; a robust loss (--robust cauchy) bounds their pull"
                                          : ""));
   }
-  if (check.has_sigma && check.reduced_chi_square > kMaxReducedChiSquare) {
+  if (!clustered && check.has_sigma && check.reduced_chi_square > kMaxReducedChiSquare) {
     result->warnings.push_back(
         "model mismatch: reduced chi-square " + Format("%.3g", check.reduced_chi_square) +
         " against the file's sigma (rms misfit " +
@@ -223,8 +238,9 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
     largest = std::max(largest, sample.value.abs().maxCoeff());
   }
   std::vector<double> z;
+  std::vector<size_t> owner;  // the usable sample (in file order) each score belongs to
   z.reserve(3 * measurement.samples.size());
-  double chi_square = 0;
+  size_t usable = 0;
   for (size_t k = 0; k < measurement.samples.size(); ++k) {
     const Sample& sample = measurement.samples[k];
     if (sample.missing || !sample.value.allFinite() || !(sample.wi.z() > 0) ||
@@ -240,7 +256,6 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
         const double sigma = measurement.sigma[k][c];
         if (!(sigma > 0) || !std::isfinite(sigma)) continue;
         score = difference / sigma;
-        chi_square += score * score;
       } else {
         // Without sigma, relative residuals: the noise of an instrument that counts photons
         // grows with the signal, so relative errors are comparable from floor to peak.
@@ -248,17 +263,44 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
         score = difference / f[c];
       }
       z.push_back(std::abs(score));
+      owner.push_back(usable);
     }
+    ++usable;
   }
   check.residuals = z.size();
   if (z.empty()) return check;
-  if (check.has_sigma) check.reduced_chi_square = chi_square / z.size();
   std::vector<double> sorted = z;
   const size_t middle = sorted.size() / 2;
   std::nth_element(sorted.begin(), sorted.begin() + middle, sorted.end());
   check.robust_scale = 1.4826 * sorted[middle];
-  for (double score : z) {
-    if (score > 0 && score > kOutlierScales * check.robust_scale) ++check.beyond_5_scale;
+  // The chi-square is taken over the inliers, so that a few outliers (reported on their own)
+  // do not pass for a misfit of the whole model.
+  double chi_square = 0;
+  size_t inliers = 0;
+  std::vector<bool> flagged(usable, false);
+  for (size_t i = 0; i < z.size(); ++i) {
+    const double score = z[i];
+    if (score > 0 && score > kOutlierScales * check.robust_scale) {
+      ++check.beyond_5_scale;
+      flagged[owner[i]] = true;
+    } else {
+      chi_square += score * score;
+      ++inliers;
+    }
+  }
+  if (check.has_sigma && inliers > 0) check.reduced_chi_square = chi_square / inliers;
+  // Runs in file order (the order an instrument sweeps its detector): isolated outliers
+  // neighbour each other by chance, a misfit region in runs.
+  size_t pairs = 0;
+  for (size_t k = 0; k < usable; ++k) {
+    check.flagged_samples += flagged[k];
+    if (k + 1 < usable) pairs += flagged[k] && flagged[k + 1];
+  }
+  check.adjacent_flagged_pairs = pairs;
+  if (usable > 1 && check.flagged_samples > 0) {
+    const double p = static_cast<double>(check.flagged_samples) / usable;
+    const double expected = (usable - 1) * p * p;
+    check.clustering_z = (pairs - expected) / std::sqrt(expected * (1 - p * p) + 1e-300);
   }
   return check;
 }

@@ -8,7 +8,8 @@
 //   * the data do not reach grazing angles (the model is extrapolated there);
 //   * the final solve did not converge;
 //   * outliers (far more samples beyond 5 robust standard deviations than noise gives);
-//   * the model does not fit within the file's stated uncertainty (reduced chi-square).
+//   * model mismatch: such samples in contiguous runs, or the inliers off the file's stated
+//     uncertainty (reduced chi-square).
 //
 // Every threshold is derived in diagnostics.cpp, next to the check that uses it.
 #pragma once
@@ -39,11 +40,16 @@ LobeResolution ResolveLobe(LobeKind kind, double exponent, const std::vector<Fit
 
 // Statistics of the fitted model's residuals against the measurement's own values.
 struct ResidualCheck {
-  size_t residuals = 0;           // channel values compared
-  bool has_sigma = false;         // z-scores use the file's sigma; else relative residuals
-  double robust_scale = 0;        // 1.4826 x median |z|
-  size_t beyond_5_scale = 0;      // |z| > 5 robust_scale (and above the rounding floor)
-  double reduced_chi_square = 0;  // mean z^2 with the file's sigma (0 without sigma)
+  size_t residuals = 0;               // channel values compared
+  bool has_sigma = false;             // z-scores use the file's sigma; else relative residuals
+  double robust_scale = 0;            // 1.4826 x median |z|
+  size_t beyond_5_scale = 0;          // |z| > 5 robust_scale (and above the rounding floor)
+  double reduced_chi_square = 0;      // mean z^2 of the inliers with the file's sigma (0 without)
+  size_t flagged_samples = 0;         // samples with a channel beyond 5 robust_scale
+  size_t adjacent_flagged_pairs = 0;  // neighbours in file order both flagged
+  // (pairs - expected) / sd for independently flagged samples: large when the flagged samples
+  // come in runs (a misfit region) rather than scattered (outliers).
+  double clustering_z = 0;
 };
 ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement);
 

@@ -159,6 +159,13 @@ TEST(FitDiagnostics, OutliersAreReportedWithoutRobustLoss) {
   const Measurement data = SynthesizeOnHemisphere(truth, options);
   const FitResult plain = FitModel(data, "blinn-phong", FitOptions{});
   EXPECT_TRUE(HasWarning(plain, "outliers")) << AllWarnings(plain);
+  // Scattered spikes are not a region the model misses.
+  const FitResult cauchy = FitModel(data, "blinn-phong", [] {
+    FitOptions robust;
+    robust.robust = fitters::Robust::kCauchy;
+    return robust;
+  }());
+  EXPECT_FALSE(HasWarning(cauchy, "model mismatch")) << AllWarnings(cauchy);
   // 5 % spikes of x10 are 5 % of the samples beyond 5 scales: the count is what was planted.
   const fitters::ResidualCheck check = fitters::CheckResiduals(truth, data);
   EXPECT_NEAR(static_cast<double>(check.beyond_5_scale) / check.residuals, 0.05, 0.01);
@@ -180,6 +187,7 @@ TEST(FitDiagnostics, ModelMismatchIsReported) {
   const Model truth = ParseModel("phong:rho_d=0.3,0.2,0.1:rho_s=0.4,0.45,0.5:n=50");
   const FitResult fit = FitModel(SynthesizeOnHemisphere(truth, {}), "blinn-phong", FitOptions{});
   EXPECT_TRUE(HasWarning(fit, "model mismatch")) << AllWarnings(fit);
+  EXPECT_FALSE(HasWarning(fit, "outliers")) << AllWarnings(fit);  // a region, not scattered
 }
 
 TEST(FitDiagnostics, WarningsReachTheJsonReport) {
