@@ -18,6 +18,7 @@
 #include "core/errors.h"
 #include "core/text.h"
 #include "energy/albedo.h"
+#include "fitters/diagnostics.h"
 #include "fitters/energy_bound.h"
 #include "fitters/parameterization.h"
 #include "fitters/residual.h"
@@ -594,6 +595,7 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
   FitResult result = VisitModelType(model_name, [&](auto model_type) {
     return RunFit<decltype(model_type)>(kind, info, prepared, options);
   });
+  AppendFitDiagnostics(measurement, prepared, &result);  // docs/stability.md
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

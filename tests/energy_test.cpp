@@ -266,5 +266,24 @@ TEST(Albedo, OptionsAreValidated) {
   EXPECT_EQ(AlbedoOptions{}.ThetaDegrees()[1], 1.0);
 }
 
+TEST(Albedo, MonteCarloWarnsWhenTheLobeExpectsTooFewSamples) {
+  // phong n = 1e6 at theta = 60 deg: the lobe's cone of 2 pi / 1e6 sr receives a cosine sample
+  // with probability 2 cos(60)/1e6 = 1e-6, so 65,536 samples expect 0.066 hits: the curve reads
+  // the lobe as nothing, with an error estimate of nothing, and must say so.
+  AlbedoOptions options = WithMethod(AlbedoMethod::kMonteCarlo, 65536);
+  options.theta_steps = 4;
+  options.theta_max_deg = 60;
+  const AlbedoCurve sharp = ModelAlbedoCurve(ParseModel("phong:rho_d=0:rho_s=1:n=1e6"), options);
+  ASSERT_EQ(sharp.warnings.size(), 1u);
+  EXPECT_NE(sharp.warnings[0].find("0.0655 of 65536"), std::string::npos) << sharp.warnings[0];
+  // The failure it warns about: at 60 deg the albedo is 0.5 (quadrature) but reads ~0.
+  EXPECT_LT(sharp.points.back().estimate.albedo[0], 0.1);
+  // A broad lobe expects thousands of hits; the quadrature never draws samples.
+  EXPECT_TRUE(ModelAlbedoCurve(ParseModel("phong:rho_d=0:rho_s=1:n=10"), options).warnings.empty());
+  options.method = AlbedoMethod::kQuadrature;
+  EXPECT_TRUE(
+      ModelAlbedoCurve(ParseModel("phong:rho_d=0:rho_s=1:n=1e6"), options).warnings.empty());
+}
+
 }  // namespace
 }  // namespace brdf

@@ -90,5 +90,27 @@ TEST(TonemapCli, NonFinitePixelsAreCountedAndNotPropagated) {
   EXPECT_EQ(png.at<cv::Vec3b>(4, 4), grey);
 }
 
+TEST(TonemapCli, BlackPixelsThatMoveTheExposureAreReported) {
+  // Half the image black: the log-average is sqrt(1e-4 x 0.5), so the automatic exposure is
+  // (0.5 / 1e-4)^(1/2) = 70.7 times what the lit half alone would get.
+  ScratchDir dir;
+  Image image(8, 8);
+  for (int64_t i = 0; i < image.pixel_count() / 2; ++i) {
+    for (int c = 0; c < 3; ++c) image.rgba[i * 4 + c] = 0.5f;
+  }
+  const std::string input = dir.File("half-black.exr");
+  WriteExr(input, image, ExrPixelType::kFloat);
+  const testing::CommandResult result =
+      RunBrdf("tonemap '" + input + "' --out '" + dir.File("out.png") + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  EXPECT_NE(result.err.find("32 of 64 pixels"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("70.7x"), std::string::npos) << result.err;
+  // A chosen exposure is the user's: nothing to warn about.
+  const testing::CommandResult fixed =
+      RunBrdf("tonemap '" + input + "' --out '" + dir.File("fixed.png") + "' --exposure 1");
+  ASSERT_EQ(fixed.exit_status, 0) << fixed.err;
+  EXPECT_EQ(fixed.err.find("black"), std::string::npos) << fixed.err;
+}
+
 }  // namespace
 }  // namespace brdf

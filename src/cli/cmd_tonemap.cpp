@@ -34,6 +34,9 @@ Command AddTonemapCommand(CLI::App& parent) {
                         << " pixels with NaN or infinite values, replaced by 0\n";
             }
             const ToneResult result = RunTonePipeline(std::move(image), tone);
+            for (const std::string& warning : result.warnings) {
+              std::cerr << "brdf tonemap: warning: " << options->input << ": " << warning << "\n";
+            }
             WritePng(options->output, result.display);
             if (!options->quiet) {
               std::cout << "wrote " << options->output << ": " << result.Summary() << "\n";

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "core/angles.h"
@@ -25,6 +26,46 @@ constexpr double kCoverageWarning = 0.99;
 constexpr double kDefensiveCosineShare = 0.1;
 
 const char* const kChannelNames[3] = {"r", "g", "b"};
+
+// Cosine-weighted Monte Carlo finds a sharp lobe only by chance. The lobe's power-cosine
+// density (e+1)/(2 pi) cos^e holds 1 - 1/e of its mass in a cone of solid angle 2 pi/(e+1)
+// about its centre (cos^(e+1) falls to 1/e there); a cosine sample lands in it with probability
+// cos(theta) 2/(e+1) (pdf cos/pi), times 4 cos(theta) for a half-vector lobe, whose cone in wi
+// is that much wider (dwi = 4 (wo.h) dwh, h at the normal). With lambda expected hits the lobe
+// is missed entirely with probability exp(-lambda), and then the value and its error estimate
+// both leave the lobe out: the error bar does not show the failure. Over a 90-angle curve,
+// lambda >= 10 keeps the chance of any such silent miss below 90 exp(-10) = 0.4 %.
+constexpr double kMinExpectedLobeHits = 10.0;
+
+// The warning for a curve computed by cosine-weighted Monte Carlo, or "" when every lobe is
+// expected to receive enough samples at every angle.
+std::string SparseLobeWarning(const Model& model, const AlbedoOptions& options) {
+  double worst_hits = std::numeric_limits<double>::infinity();
+  double worst_theta = 0, worst_exponent = 0;
+  for (const AlbedoTerm& term : AlbedoTerms(model)) {
+    if (term.coordinates.frame == LobeFrame::kNormal || !(term.scale > 0)) continue;
+    const double e = term.coordinates.exponent;
+    for (double theta_deg : options.ThetaDegrees()) {
+      const double cos_theta = std::cos(DegToRad(theta_deg));
+      double probability = 2.0 * cos_theta / (e + 1.0);
+      if (term.coordinates.frame == LobeFrame::kHalfVector) probability *= 4.0 * cos_theta;
+      const double hits = static_cast<double>(options.samples) * std::min(probability, 1.0);
+      if (hits < worst_hits) {
+        worst_hits = hits;
+        worst_theta = theta_deg;
+        worst_exponent = e;
+      }
+    }
+  }
+  if (!(worst_hits < kMinExpectedLobeHits)) return "";
+  std::ostringstream text;
+  text << "Monte Carlo: the lobe (exponent " << std::setprecision(4) << worst_exponent
+       << ") expects only " << std::setprecision(3) << worst_hits << " of " << options.samples
+       << " cosine samples at theta = " << std::fixed << std::setprecision(1) << worst_theta
+       << " deg; a lobe no sample hits is left out of both the albedo and its error estimate, "
+          "so the error bar can hide the miss (use --method quadrature or importance)";
+  return text.str();
+}
 
 std::vector<SamplingStrategy> ImportanceStrategies(const std::vector<AlbedoTerm>& terms) {
   double total_scale = 0;
@@ -287,6 +328,10 @@ AlbedoCurve ModelAlbedoCurve(const Model& model, const AlbedoOptions& options, P
         return ModelDirectionalAlbedo(model, theta_o, options, stream);
       });
   FinishAlbedoCurve(&curve);
+  if (options.method == AlbedoMethod::kMonteCarlo) {
+    const std::string warning = SparseLobeWarning(model, options);
+    if (!warning.empty()) curve.warnings.push_back(warning);
+  }
   return curve;
 }
 

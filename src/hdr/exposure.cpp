@@ -14,8 +14,10 @@ namespace {
 
 struct LogSum {
   double log_sum = 0.0;
+  double lit_log_sum = 0.0;
   double max = 0.0;
   int64_t pixels = 0;
+  int64_t black = 0;
 };
 
 }  // namespace
@@ -28,7 +30,13 @@ SceneLuminance MeasureSceneLuminance(const Image& image, double delta) {
           const float* rgba = image.rgba.data() + i * Image::kChannels;
           if (!(rgba[3] > 0.0f)) continue;
           const float luminance = std::max(0.0f, PixelLuminance(rgba));
-          sum.log_sum += std::log(static_cast<float>(delta) + luminance);
+          const double log_luminance = std::log(static_cast<float>(delta) + luminance);
+          sum.log_sum += log_luminance;
+          if (luminance > 0.0f) {
+            sum.lit_log_sum += log_luminance;
+          } else {
+            ++sum.black;
+          }
           sum.max = std::max(sum.max, static_cast<double>(luminance));
           ++sum.pixels;
         }
@@ -36,6 +44,8 @@ SceneLuminance MeasureSceneLuminance(const Image& image, double delta) {
       },
       [](LogSum a, const LogSum& b) {
         a.log_sum += b.log_sum;
+        a.lit_log_sum += b.lit_log_sum;
+        a.black += b.black;
         a.max = std::max(a.max, b.max);
         a.pixels += b.pixels;
         return a;
@@ -44,6 +54,9 @@ SceneLuminance MeasureSceneLuminance(const Image& image, double delta) {
   scene.pixels = total.pixels;
   scene.max = total.max;
   scene.log_average = total.pixels > 0 ? std::exp(total.log_sum / total.pixels) : 0.0;
+  scene.black_pixels = total.black;
+  const int64_t lit = total.pixels - total.black;
+  scene.log_average_lit = lit > 0 ? std::exp(total.lit_log_sum / lit) : 0.0;
   return scene;
 }
 

@@ -15,6 +15,11 @@ struct SceneLuminance {
   double log_average = 0.0;
   double max = 0.0;
   int64_t pixels = 0;
+  // Pixels of luminance <= 0 (black, or negative and clamped), and the log-average over the
+  // others: each black pixel adds log(delta) to the mean, so many of them pull the automatic
+  // exposure up (docs/stability.md).
+  int64_t black_pixels = 0;
+  double log_average_lit = 0.0;
 };
 SceneLuminance MeasureSceneLuminance(const Image& image, double delta = 1e-4);
 

@@ -47,6 +47,35 @@ std::string ToneResult::Summary() const {
   return text;
 }
 
+namespace {
+
+// Black pixels enter the log-average as log(delta) (Reinhard 2002, eq. 1): a share b of them
+// multiplies the automatic exposure by (L_lit / delta)^b, L_lit the log-average of the rest —
+// 100x for half an image of black background at L_lit = 1. One photographic stop (a factor 2)
+// is the smallest exposure change a viewer plainly sees, so the pipeline says so from there.
+constexpr double kVisibleExposureFactor = 2.0;
+
+std::string BlackPixelWarning(const SceneLuminance& scene) {
+  if (scene.black_pixels == 0 || scene.pixels == 0) return "";
+  char buffer[320];
+  if (scene.black_pixels == scene.pixels) {
+    std::snprintf(buffer, sizeof(buffer),
+                  "all %lld pixels are black (luminance <= 0): nothing to expose",
+                  static_cast<long long>(scene.pixels));
+    return buffer;
+  }
+  const double factor = scene.log_average_lit / scene.log_average;
+  if (!(factor >= kVisibleExposureFactor)) return "";
+  std::snprintf(buffer, sizeof(buffer),
+                "%lld of %lld pixels (%.3g%%) are black (luminance <= 0) and raise the automatic "
+                "exposure %.3gx (%.2g stops) over the rest's; set --exposure to choose it",
+                static_cast<long long>(scene.black_pixels), static_cast<long long>(scene.pixels),
+                100.0 * scene.black_pixels / scene.pixels, factor, std::log2(factor));
+  return buffer;
+}
+
+}  // namespace
+
 Image8 EncodeDisplay(const Image& image, const TransferCurve& transfer) {
   const Quantizer8 quantize(transfer);
   Image8 display;
@@ -68,6 +97,10 @@ ToneResult RunTonePipeline(Image image, const ToneOptions& options) {
   ToneResult result;
   result.scene = MeasureSceneLuminance(image, options.delta);
   result.exposure = options.exposure ? *options.exposure : AutoExposure(result.scene, options.key);
+  if (!options.exposure) {
+    const std::string warning = BlackPixelWarning(result.scene);
+    if (!warning.empty()) result.warnings.push_back(warning);
+  }
   ApplyExposure(&image, result.exposure);
 
   if (options.bloom != BlurKind::kNone && options.bloom_strength > 0.0) {

@@ -7,6 +7,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "hdr/blur.h"
 #include "hdr/image.h"
@@ -39,6 +40,8 @@ struct ToneResult {
   SceneLuminance scene;   // of the input, before exposure
   ToneMapping mapping;
   double bloom_sigma = 0.0;  // the blur's real sigma (dual filtering rounds to whole levels)
+  // What the caller should tell the user (e.g. black pixels that moved the automatic exposure).
+  std::vector<std::string> warnings;
   // e.g. "1920x1080, exposure 0.81 (auto), reinhard-extended L_white 42.1, bloom dual 15.5 px,
   // srgb"
   std::string Summary() const;

@@ -1,0 +1,325 @@
+#include "fitters/diagnostics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/angles.h"
+#include "fitters/parameterization.h"
+
+namespace brdf::fitters {
+namespace {
+
+constexpr double kRadToDeg = 180.0 / kPi;
+
+// Lobe edges in units of the lobe's exponent term x = -e ln cos(offset) ~ e offset^2 / 2 (so
+// x = (offset / sigma)^2 / 2). The flank runs from offset = sigma/2 (x = 1/8, the lobe at 88 %
+// of its peak) to offset = 3 sigma (x = 4.5, the lobe at 1.1 % of its peak). Only there does the
+// exponent change the data at first order: d ln(lobe)/d ln(e) = -x, which is below 1/8 nearer
+// the peak (where the exponent changes only the normalization, which rho_s absorbs) and acts on
+// a lobe below 1 % of its peak farther out (lost under the diffuse floor and the noise).
+constexpr double kFlankStart = 1.0 / 8.0;
+constexpr double kFlankEnd = 4.5;
+
+// A lobe whose share of the albedo budget, A(e) rho_s, is below this in every channel has
+// vanished: the fitter's logistic variable has run to its saturation (fit.cpp holds variables
+// beyond |23|, logistic(-23) = 1e-10, out of the covariance), and no measurement resolves an
+// albedo of 1e-9.
+constexpr double kVanishedLobeShare = 1e-9;
+
+// Relative standard error beyond which a parameter is not identifiable: the 1-sigma interval
+// of an albedo then includes 0, and an exponent (fitted as log e) is uncertain by more than a
+// factor e, its lobe width by more than a factor sqrt(e) = 1.65.
+constexpr double kMaxRelativeStderr = 1.0;
+
+// Coverage: the data should see the projected hemisphere (∫ cos dω = π) up to 1 %, the same
+// standard as the energy check's coverage warning (docs/energy.md). Directions beyond theta_max
+// hold the fraction cos^2(theta_max) of it, so theta_max must reach acos(0.1) = 84.3 deg.
+constexpr double kMaxUnseenProjectedFraction = 0.01;
+
+// Outliers: under Gaussian noise of the robust scale, P(|z| > 5) = 5.7e-7. One residual in a
+// thousand beyond 5 scales is 1700 times that, and even a million residuals expect fewer than
+// one by chance, so noise alone never raises the warning.
+constexpr double kOutlierScales = 5.0;
+constexpr double kMaxOutlierFraction = 1e-3;
+// Residuals below this fraction of the largest data value are rounding, not misfit (a
+// noise-free fit leaves ~1e-13 relative), and are never counted as outliers.
+constexpr double kRoundingFloor = 1e-9;
+
+// Outliers or misfit: samples beyond 5 scales that neighbour each other in file order more
+// often than independent flags would (expected pairs (n-1) p^2 for a flagged share p) by more
+// than 5 standard deviations of that count form a region the model cannot follow. 5 sigma, as
+// above, so that chance never decides it.
+constexpr double kClusteringScore = 5.0;
+
+// Mismatch: with honest sigmas the reduced chi-square is 1 +- sqrt(2/dof), 1 +- 0.01 for 20,000
+// residuals. Stated sigmas are estimates themselves (the virtual gonioreflectometer's leave
+// out arm jitter, docs/gonio.md), so the check allows them to be off by a factor of two: it
+// warns when the rms misfit is more than twice the stated uncertainty (chi-square > 4).
+constexpr double kMaxReducedChiSquare = 4.0;
+
+std::string Format(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, value);
+  return buffer;
+}
+
+// x = -e ln cos(offset) of one sample: 0 at the lobe's centre, infinity where the lobe is 0.
+double LobeExponentTerm(LobeKind kind, double exponent, const Vec3& wi, const Vec3& wo) {
+  double cos_offset;
+  if (kind == LobeKind::kPhong) {
+    cos_offset = MirrorDirection(wi).dot(wo);
+  } else {
+    cos_offset = (wi + wo).normalized().z();
+  }
+  if (!(cos_offset > 0)) return std::numeric_limits<double>::infinity();
+  return -exponent * std::log(std::min(cos_offset, 1.0));
+}
+
+const char* OffsetName(LobeKind kind) {
+  return kind == LobeKind::kPhong ? "angle from the mirror direction" : "half-vector angle";
+}
+
+// The diffuse part cannot be unresolved; only lobed fits whose lobe is still there are checked.
+bool LobeVanished(const FitResult& result, LobeKind kind) {
+  const double exponent = result.model.params()[models::LobedSlots::kExponent];
+  for (int c = 0; c < 3; ++c) {
+    if (LobeAlbedoAtNormal(kind, exponent) * result.model.Param("rho_s", c) >= kVanishedLobeShare) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void CheckLobeResolution(const PreparedSamples& prepared, LobeKind kind, FitResult* result) {
+  const double exponent = result->model.params()[models::LobedSlots::kExponent];
+  const LobeResolution lobe = ResolveLobe(kind, exponent, prepared.samples);
+  if (lobe.flank_samples > 0) return;
+  std::string nearest = std::isfinite(lobe.nearest_off_peak_deg)
+                            ? Format("%.3g", lobe.nearest_off_peak_deg) + " deg"
+                            : std::string("nowhere");
+  result->warnings.push_back(
+      "lobe narrower than the sample spacing: the fitted lobe (exponent " +
+      Format("%.4g", exponent) + ", half-width " + Format("%.3g", lobe.half_width_deg) +
+      " deg in the " + OffsetName(kind) + ") has no sample on its flank (" +
+      Format("%.3g", lobe.half_width_deg / 2) + " to " + Format("%.3g", 3 * lobe.half_width_deg) +
+      " deg); the nearest sample off its peak is " + nearest + " away, so the data bound the " +
+      "exponent from below but do not determine it");
+}
+
+void CheckIdentifiability(LobeKind kind, FitResult* result) {
+  const Model& model = result->model;
+  if (!result->stderr_available) {
+    result->warnings.push_back("not identifiable: " + result->stderr_note);
+  }
+  if (kind != LobeKind::kNone) {
+    if (LobeVanished(*result, kind)) {
+      result->warnings.push_back(
+          "not identifiable: the lobe vanished (rho_s = 0 in every channel), so its "
+          "exponent is arbitrary; the data show no lobe (try --model lambert)");
+      return;  // the exponent's box and error mean nothing without a lobe
+    }
+    const double exponent = model.params()[models::LobedSlots::kExponent];
+    std::string name = "exponent";
+    for (const ParamInfo& param : model.info().params) {
+      if (param.slot == models::LobedSlots::kExponent) name = param.name;
+    }
+    if (exponent >= FitVariables::kMaxExponent * (1 - 1e-3)) {
+      result->warnings.push_back("not identifiable: the exponent " + name +
+                                 " sits at the fitter's upper bound 1e6; the data ask for a "
+                                 "lobe at least this sharp and cannot say how much sharper");
+    } else if (exponent <= FitVariables::kMinExponent * (1 + 1e-3)) {
+      result->warnings.push_back("not identifiable: the exponent " + name +
+                                 " sits at the fitter's lower bound 1; the data ask for a "
+                                 "broader lobe than the model has");
+    }
+  }
+  if (!result->stderr_available) return;
+  for (const ParamInfo& param : model.info().params) {
+    for (int c = 0; c < param.channels; ++c) {
+      const double value = model.params()[param.slot + c];
+      const double error = result->stderr_values[param.slot + c];
+      // NaN: the parameter sits at its bound (held out of the covariance, fit.cpp), reported
+      // as "n/a" already.
+      if (!std::isfinite(error) || !(value > 0)) continue;
+      if (error > kMaxRelativeStderr * value) {
+        std::string channel =
+            param.channels == 1 ? std::string() : std::string(" (") + "rgb"[c] + ")";
+        result->warnings.push_back("not identifiable: " + param.name + channel + " = " +
+                                   Format("%.4g", value) + " +- " + Format("%.3g", error) +
+                                   ", a standard error larger than the value");
+      }
+    }
+  }
+}
+
+void CheckCoverage(const Measurement& measurement, FitResult* result) {
+  double max_cos = 0;  // of the smaller cosine of each present sample: its larger polar angle
+  double min_cos = 1;
+  bool any = false;
+  for (const Sample& sample : measurement.samples) {
+    if (sample.missing || !(sample.wi.z() > 0) || !(sample.wo.z() > 0)) continue;
+    min_cos = std::min({min_cos, sample.wi.z(), sample.wo.z()});
+    max_cos = std::max(max_cos, std::min(sample.wi.z(), sample.wo.z()));
+    any = true;
+  }
+  if (!any) return;
+  const double unseen = min_cos * min_cos;  // cos^2(theta_max): projected solid angle beyond
+  if (unseen <= kMaxUnseenProjectedFraction) return;
+  const double theta_max_deg = std::acos(std::clamp(min_cos, 0.0, 1.0)) * kRadToDeg;
+  result->warnings.push_back(
+      "coverage: the data reach theta = " + Format("%.3g", theta_max_deg) + " deg at most, so " +
+      Format("%.2g", 100 * unseen) +
+      " % of the projected hemisphere is unobserved: the model's grazing behaviour (Fresnel "
+      "rise, shadowing) is extrapolated there, not fitted");
+}
+
+void CheckResidualWarnings(const Measurement& measurement, FitResult* result) {
+  const ResidualCheck check = CheckResiduals(result->model, measurement);
+  if (check.residuals == 0) return;
+  const double fraction = static_cast<double>(check.beyond_5_scale) / check.residuals;
+  const bool clustered = check.clustering_z > kClusteringScore;
+  if (fraction > kMaxOutlierFraction && clustered) {
+    result->warnings.push_back(
+        "model mismatch: " + std::to_string(check.flagged_samples) +
+        " samples lie beyond 5 robust standard deviations of the fit in contiguous runs (" +
+        std::to_string(check.adjacent_flagged_pairs) + " neighbouring pairs, " +
+        Format("%.3g", check.clustering_z) +
+        " standard deviations more than isolated outliers would give): a region the model "
+        "cannot follow, not scattered bad readings");
+  } else if (fraction > kMaxOutlierFraction) {
+    const std::string what = check.has_sigma ? "z-scores" : "relative residuals";
+    result->warnings.push_back(
+        "outliers: " + std::to_string(check.beyond_5_scale) + " of " +
+        std::to_string(check.residuals) + " values (" + Format("%.2g", 100 * fraction) +
+        " %) lie beyond 5 robust standard deviations of the " + what +
+        ", where Gaussian noise puts 6e-5 %" +
+        (result->robust == Robust::kNone ? "; a robust loss (--robust cauchy) bounds their pull"
+                                         : ""));
+  }
+  if (!clustered && check.has_sigma && check.reduced_chi_square > kMaxReducedChiSquare) {
+    result->warnings.push_back(
+        "model mismatch: reduced chi-square " + Format("%.3g", check.reduced_chi_square) +
+        " against the file's sigma (rms misfit " +
+        Format("%.2g", std::sqrt(check.reduced_chi_square)) +
+        " x the stated uncertainty): the model does not represent these data within their noise");
+  }
+}
+
+}  // namespace
+
+LobeResolution ResolveLobe(LobeKind kind, double exponent, const std::vector<FitSample>& samples) {
+  LobeResolution lobe;
+  lobe.half_width_deg = std::acos(std::exp(-0.5 / exponent)) * kRadToDeg;
+  lobe.nearest_off_peak_deg = std::numeric_limits<double>::infinity();
+  if (kind == LobeKind::kNone) return lobe;
+  for (const FitSample& sample : samples) {
+    const double x = LobeExponentTerm(kind, exponent, sample.wi, sample.wo);
+    if (x < kFlankStart) {
+      ++lobe.peak_samples;
+      continue;
+    }
+    if (x <= kFlankEnd) ++lobe.flank_samples;
+    if (std::isfinite(x)) {
+      const double offset_deg = std::acos(std::exp(-x / exponent)) * kRadToDeg;
+      lobe.nearest_off_peak_deg = std::min(lobe.nearest_off_peak_deg, offset_deg);
+    }
+  }
+  return lobe;
+}
+
+ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement) {
+  ResidualCheck check;
+  check.has_sigma = measurement.has_sigma();
+  double largest = 0;
+  for (const Sample& sample : measurement.samples) {
+    if (sample.missing || !sample.value.allFinite()) continue;
+    largest = std::max(largest, sample.value.abs().maxCoeff());
+  }
+  std::vector<double> z;
+  std::vector<size_t> owner;  // the usable sample (in file order) each score belongs to
+  z.reserve(3 * measurement.samples.size());
+  size_t usable = 0;
+  for (size_t k = 0; k < measurement.samples.size(); ++k) {
+    const Sample& sample = measurement.samples[k];
+    if (sample.missing || !sample.value.allFinite() || !(sample.wi.z() > 0) ||
+        !(sample.wo.z() > 0)) {
+      continue;
+    }
+    const Rgb f = model.Eval(sample.wi, sample.wo);
+    for (int c = 0; c < 3; ++c) {
+      double difference = sample.value[c] - f[c];
+      if (std::abs(difference) <= kRoundingFloor * largest) difference = 0;
+      double score;
+      if (check.has_sigma) {
+        const double sigma = measurement.sigma[k][c];
+        if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+        score = difference / sigma;
+      } else {
+        // Without sigma, relative residuals: the noise of an instrument that counts photons
+        // grows with the signal, so relative errors are comparable from floor to peak.
+        if (!(f[c] > 0)) continue;
+        score = difference / f[c];
+      }
+      z.push_back(std::abs(score));
+      owner.push_back(usable);
+    }
+    ++usable;
+  }
+  check.residuals = z.size();
+  if (z.empty()) return check;
+  std::vector<double> sorted = z;
+  const size_t middle = sorted.size() / 2;
+  std::nth_element(sorted.begin(), sorted.begin() + middle, sorted.end());
+  check.robust_scale = 1.4826 * sorted[middle];
+  // The chi-square is taken over the inliers, so that a few outliers (reported on their own)
+  // do not pass for a misfit of the whole model.
+  double chi_square = 0;
+  size_t inliers = 0;
+  std::vector<bool> flagged(usable, false);
+  for (size_t i = 0; i < z.size(); ++i) {
+    const double score = z[i];
+    if (score > 0 && score > kOutlierScales * check.robust_scale) {
+      ++check.beyond_5_scale;
+      flagged[owner[i]] = true;
+    } else {
+      chi_square += score * score;
+      ++inliers;
+    }
+  }
+  if (check.has_sigma && inliers > 0) check.reduced_chi_square = chi_square / inliers;
+  // Runs in file order (the order an instrument sweeps its detector): isolated outliers
+  // neighbour each other by chance, a misfit region in runs.
+  size_t pairs = 0;
+  for (size_t k = 0; k < usable; ++k) {
+    check.flagged_samples += flagged[k];
+    if (k + 1 < usable) pairs += flagged[k] && flagged[k + 1];
+  }
+  check.adjacent_flagged_pairs = pairs;
+  if (usable > 1 && check.flagged_samples > 0) {
+    const double p = static_cast<double>(check.flagged_samples) / usable;
+    const double expected = (usable - 1) * p * p;
+    check.clustering_z = (pairs - expected) / std::sqrt(expected * (1 - p * p) + 1e-300);
+  }
+  return check;
+}
+
+void AppendFitDiagnostics(const Measurement& measurement, const PreparedSamples& prepared,
+                          FitResult* result) {
+  const LobeKind kind = LobeKindOf(result->model.name());
+  if (!result->converged) {
+    result->warnings.push_back(
+        "not converged: the final solve stopped without meeting its "
+        "tolerances (" +
+        result->termination + "); the parameters are the best found, not an optimum");
+  }
+  CheckIdentifiability(kind, result);
+  if (kind != LobeKind::kNone && !LobeVanished(*result, kind)) {
+    CheckLobeResolution(prepared, kind, result);
+  }
+  CheckCoverage(measurement, result);
+  CheckResidualWarnings(measurement, result);
+}
+
+}  // namespace brdf::fitters

@@ -1,0 +1,207 @@
+// The fit report's diagnostics (fitters/diagnostics.h, docs/stability.md): each failure mode the
+// stability study found is built here and the report must name it; a healthy fit of the same
+// data must raise none of them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "fitters/diagnostics.h"
+#include "fitters/fit.h"
+#include "fitters/report.h"
+#include "models/model_string.h"
+#include "synthetic_measurement.h"
+
+namespace brdf {
+namespace {
+
+using fitters::FitModel;
+using fitters::FitOptions;
+using fitters::FitResult;
+using testing::SynthesizeOnHemisphere;
+using testing::SyntheticOptions;
+
+// The diagnostics' warnings begin with these words (the subsample and energy-bound notes are
+// the fitter's own and say nothing about reliability).
+const char* kDiagnostics[] = {"lobe narrower", "not identifiable", "coverage",
+                              "outliers",      "model mismatch",   "not converged"};
+
+bool HasWarning(const FitResult& fit, const std::string& prefix) {
+  for (const std::string& warning : fit.warnings) {
+    if (warning.rfind(prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
+std::string AllWarnings(const FitResult& fit) {
+  std::string text;
+  for (const std::string& warning : fit.warnings) text += "\n  " + warning;
+  return text;
+}
+
+constexpr const char* kGlossyPhong = "phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:n=300";
+constexpr const char* kGlossyBlinn = "blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:m=300";
+
+TEST(FitDiagnostics, HealthyFitsRaiseNone) {
+  for (const char* text : {kGlossyPhong, kGlossyBlinn}) {
+    const Model truth = ParseModel(text);
+    const FitResult fit = FitModel(SynthesizeOnHemisphere(truth, {}), truth.name(), FitOptions{});
+    ASSERT_TRUE(fit.converged) << text;
+    for (const char* prefix : kDiagnostics) {
+      EXPECT_FALSE(HasWarning(fit, prefix))
+          << text << " raised '" << prefix << "'" << AllWarnings(fit);
+    }
+    // The recovered exponent is good to a few percent: the warnings' silence is deserved.
+    EXPECT_NEAR(fit.model.params()[models::LobedSlots::kExponent], 300, 0.03 * 300) << text;
+  }
+}
+
+TEST(FitDiagnostics, LobeNarrowerThanTheSampleSpacingIsReported) {
+  // A lobe 0.57 deg wide (n = 1e4) read every 15 deg of incidence and 10 deg of azimuth: the
+  // mirror direction is sampled, its nearest neighbours lie 2.6 deg (4.5 widths) away or more.
+  const Model truth = ParseModel("phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:n=1e4");
+  SyntheticOptions options;
+  options.theta_step_deg = 15;
+  options.phi_step_deg = 10;
+  const FitResult fit = FitModel(SynthesizeOnHemisphere(truth, options), "phong", FitOptions{});
+  EXPECT_TRUE(HasWarning(fit, "lobe narrower than the sample spacing")) << AllWarnings(fit);
+  // The truth's own lobe has no sample on its flank either.
+  const fitters::PreparedSamples prepared =
+      fitters::PrepareSamples(SynthesizeOnHemisphere(truth, options), fitters::Loss::kL2);
+  const fitters::LobeResolution lobe =
+      fitters::ResolveLobe(fitters::LobeKind::kPhong, 1e4, prepared.samples);
+  EXPECT_EQ(lobe.flank_samples, 0u);
+  EXPECT_GT(lobe.peak_samples, 0u);
+  EXPECT_NEAR(lobe.half_width_deg, 180 / kPi / std::sqrt(1e4), 1e-3);
+}
+
+TEST(FitDiagnostics, LobeResolutionCountsTheFlankExactly) {
+  // Phong lobe of exponent 100 (sigma = 5.73 deg) at normal incidence; detectors on rings at
+  // offsets 1, 4, 10 and 20 deg from the mirror direction (the normal). The flank is
+  // [sigma/2, 3 sigma] = [2.87, 17.2] deg: the rings at 4 and 10 deg, 8 samples each.
+  std::vector<fitters::FitSample> samples;
+  for (double offset_deg : {1.0, 4.0, 10.0, 20.0}) {
+    for (int k = 0; k < 8; ++k) {
+      fitters::FitSample sample;
+      sample.wi = Vec3(0, 0, 1);
+      sample.wo = SphericalDirection(DegToRad(offset_deg), 2 * kPi * k / 8);
+      samples.push_back(sample);
+    }
+  }
+  const fitters::LobeResolution lobe =
+      fitters::ResolveLobe(fitters::LobeKind::kPhong, 100, samples);
+  EXPECT_EQ(lobe.peak_samples, 8u);
+  EXPECT_EQ(lobe.flank_samples, 16u);
+  EXPECT_NEAR(lobe.nearest_off_peak_deg, 4.0, 1e-9);
+  // In half-vector terms the same rings sit at half the offset: theta_h = 0.5, 2, 5, 10 deg.
+  const fitters::LobeResolution blinn =
+      fitters::ResolveLobe(fitters::LobeKind::kBlinnPhong, 100, samples);
+  EXPECT_EQ(blinn.peak_samples, 16u);  // 0.5 and 2 deg < 2.87 deg
+  EXPECT_EQ(blinn.flank_samples, 16u);
+}
+
+TEST(FitDiagnostics, LobeOnMatteDataIsNotIdentifiable) {
+  const Model matte = ParseModel("lambert:rho_d=0.5,0.3,0.2");
+  const FitResult fit = FitModel(SynthesizeOnHemisphere(matte, {}), "phong", FitOptions{});
+  EXPECT_TRUE(HasWarning(fit, "not identifiable")) << AllWarnings(fit);
+  // The lambert fit of the same data is healthy.
+  const FitResult lambert = FitModel(SynthesizeOnHemisphere(matte, {}), "lambert", FitOptions{});
+  for (const char* prefix : kDiagnostics) {
+    EXPECT_FALSE(HasWarning(lambert, prefix)) << prefix << AllWarnings(lambert);
+  }
+}
+
+TEST(FitDiagnostics, LargeStandardErrorIsReported) {
+  // A faint lobe under 20 % noise: its peak, 5e-4 sr^-1 over a floor of 0.16, is 0.3 % of the
+  // signal, and the ~2,000 readings inside it average the noise down to about that.
+  const Model truth = ParseModel("phong:rho_d=0.5:rho_s=1e-4:n=30");
+  SyntheticOptions options;
+  options.noise = 0.2;
+  const FitResult fit = FitModel(SynthesizeOnHemisphere(truth, options), "phong", FitOptions{});
+  EXPECT_TRUE(HasWarning(fit, "not identifiable")) << fit.model.ToString() << AllWarnings(fit);
+}
+
+TEST(FitDiagnostics, LowCoverageIsReportedAndFullCoverageIsNot) {
+  const Model truth = ParseModel(kGlossyBlinn);
+  SyntheticOptions low;
+  low.theta_max_deg = 60;
+  const FitResult fit = FitModel(SynthesizeOnHemisphere(truth, low), "blinn-phong", FitOptions{});
+  ASSERT_TRUE(HasWarning(fit, "coverage")) << AllWarnings(fit);
+  // cos^2(60 deg) = 25 % of the projected hemisphere is unobserved.
+  bool quoted = false;
+  for (const std::string& warning : fit.warnings) {
+    quoted = quoted || (warning.find("theta = 60 deg") != std::string::npos &&
+                        warning.find("25 %") != std::string::npos);
+  }
+  EXPECT_TRUE(quoted) << AllWarnings(fit);
+  SyntheticOptions grazing;
+  grazing.grazing_rings = true;  // up to 89 deg
+  const FitResult full =
+      FitModel(SynthesizeOnHemisphere(truth, grazing), "blinn-phong", FitOptions{});
+  EXPECT_FALSE(HasWarning(full, "coverage")) << AllWarnings(full);
+}
+
+TEST(FitDiagnostics, NonConvergenceIsReported) {
+  const Model truth = ParseModel(kGlossyBlinn);
+  FitOptions options;
+  options.max_iterations = 1;
+  const FitResult fit = FitModel(SynthesizeOnHemisphere(truth, {}), "blinn-phong", options);
+  ASSERT_FALSE(fit.converged);
+  EXPECT_TRUE(HasWarning(fit, "not converged")) << AllWarnings(fit);
+}
+
+TEST(FitDiagnostics, OutliersAreReportedWithoutRobustLoss) {
+  const Model truth = ParseModel(kGlossyBlinn);
+  SyntheticOptions options;
+  options.outlier_fraction = 0.05;
+  options.seed = 7;
+  const Measurement data = SynthesizeOnHemisphere(truth, options);
+  const FitResult plain = FitModel(data, "blinn-phong", FitOptions{});
+  EXPECT_TRUE(HasWarning(plain, "outliers")) << AllWarnings(plain);
+  // Scattered spikes are not a region the model misses.
+  const FitResult cauchy = FitModel(data, "blinn-phong", [] {
+    FitOptions robust;
+    robust.robust = fitters::Robust::kCauchy;
+    return robust;
+  }());
+  EXPECT_FALSE(HasWarning(cauchy, "model mismatch")) << AllWarnings(cauchy);
+  // 5 % spikes of x10 are 5 % of the samples beyond 5 scales: the count is what was planted.
+  const fitters::ResidualCheck check = fitters::CheckResiduals(truth, data);
+  EXPECT_NEAR(static_cast<double>(check.beyond_5_scale) / check.residuals, 0.05, 0.01);
+  EXPECT_NEAR(check.robust_scale, 1.0, 0.1);  // the sigma column is honest for the inliers
+}
+
+TEST(FitDiagnostics, HonestSigmaGivesUnitChiSquare) {
+  const Model truth = ParseModel(kGlossyPhong);
+  const fitters::ResidualCheck check =
+      fitters::CheckResiduals(truth, SynthesizeOnHemisphere(truth, {}));
+  // 3 x 21,000 residuals: chi-square / dof = 1 +- 0.006.
+  EXPECT_NEAR(check.reduced_chi_square, 1.0, 0.03);
+  EXPECT_EQ(check.beyond_5_scale, 0u);
+}
+
+TEST(FitDiagnostics, ModelMismatchIsReported) {
+  // Phong's lobe about the mirror direction is not Blinn-Phong's half-vector lobe: away from
+  // normal incidence the two differ in shape, far beyond 1 % noise.
+  const Model truth = ParseModel("phong:rho_d=0.3,0.2,0.1:rho_s=0.4,0.45,0.5:n=50");
+  const FitResult fit = FitModel(SynthesizeOnHemisphere(truth, {}), "blinn-phong", FitOptions{});
+  EXPECT_TRUE(HasWarning(fit, "model mismatch")) << AllWarnings(fit);
+  EXPECT_FALSE(HasWarning(fit, "outliers")) << AllWarnings(fit);  // a region, not scattered
+}
+
+TEST(FitDiagnostics, WarningsReachTheJsonReport) {
+  const Model truth = ParseModel(kGlossyBlinn);
+  SyntheticOptions low;
+  low.theta_max_deg = 60;
+  const FitResult fit = FitModel(SynthesizeOnHemisphere(truth, low), "blinn-phong", FitOptions{});
+  const nlohmann::json json = fitters::FitReportJson(fit, "synthetic", nullptr);
+  bool found = false;
+  for (const auto& warning : json["warnings"]) {
+    found = found || warning.get<std::string>().rfind("coverage", 0) == 0;
+  }
+  EXPECT_TRUE(found) << json["warnings"].dump();
+}
+
+}  // namespace
+}  // namespace brdf
