@@ -3,9 +3,11 @@
 //   case,samples,loss,max_samples,median_s,max_relative_error,converged,is_default
 // Cases: "merl" fits a full 90x90x180 MERL table tabulated from an analytic blinn-phong (the
 // cells above the horizon); "random" fits N uniformly random (wi, wo) pairs, as libbsdf's
-// lbfit draws 100,000 random samples. Both are noise-free; the sweep that follows adds 1%
-// Gaussian noise, so its error measures what the sample count buys. `is_default` is 1 when
-// the loss and the subsample size are FitOptions' defaults (what `brdf fit` runs).
+// lbfit draws 100,000 random samples. Both are noise-free. The sweeps that follow add
+// Gaussian noise, so their error measures what the sample count and the loss buy: "noisy",
+// 1% of each value (multiplicative, as from a calibration or a gain), and "additive", 1% of the
+// mean value (as from a detector's read noise). `is_default` is 1 when the loss and the
+// subsample size are FitOptions' defaults (what `brdf fit` runs).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -40,19 +42,35 @@ Vec3 UniformHemisphere(std::mt19937_64& random) {
   return Vec3(r * std::cos(phi), r * std::sin(phi), z);
 }
 
-// `noise`: Gaussian, one standard deviation relative to the value.
-Measurement RandomMeasurement(const Model& truth, size_t count, uint64_t seed, double noise) {
+enum class Noise { kRelative, kAdditive };
+
+// Gaussian noise of one standard deviation `noise` times the value (kRelative) or times the
+// channel's mean value over the samples (kAdditive).
+Measurement RandomMeasurement(const Model& truth, size_t count, uint64_t seed, double noise,
+                              Noise kind = Noise::kRelative) {
   Measurement measurement;
   measurement.format = "random";
   std::mt19937_64 random(seed);
   std::normal_distribution<double> gaussian;
+  std::vector<Rgb> draws;  // standard normal, one per channel and sample
+  Rgb mean = Rgb::Zero();
   for (size_t k = 0; k < count; ++k) {
     Sample sample;
     sample.wi = UniformHemisphere(random);
     sample.wo = UniformHemisphere(random);
     sample.value = truth.Eval(sample.wi, sample.wo);
-    for (int c = 0; c < 3; ++c) sample.value[c] *= 1.0 + noise * gaussian(random);
+    Rgb draw;
+    for (int c = 0; c < 3; ++c) draw[c] = gaussian(random);
+    draws.push_back(draw);
+    mean += sample.value / static_cast<double>(count);
     measurement.samples.push_back(sample);
+  }
+  for (size_t k = 0; k < count; ++k) {
+    Sample& sample = measurement.samples[k];
+    for (int c = 0; c < 3; ++c) {
+      const double scale = kind == Noise::kRelative ? sample.value[c] : mean[c];
+      sample.value[c] += noise * scale * draws[k][c];
+    }
   }
   return measurement;
 }
@@ -114,14 +132,21 @@ int main(int argc, char** argv) {
   const std::vector<size_t> counts =
       quick ? std::vector<size_t>{1000, 3000}
             : std::vector<size_t>{1000, 3000, 10000, 30000, 100000, 300000, 1000000};
-  const int sweep_repetitions = quick ? 1 : std::max(1, repetitions / 2);
-  for (size_t count : counts) {
-    const Measurement random = RandomMeasurement(truth, count, 13, 0.01);
-    for (fitters::Loss loss : {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
-      // Up to max_samples the subsample is every sample: the two settings are the same fit.
-      if (count > defaults.max_samples) Run("noisy", random, truth, loss, 0, sweep_repetitions);
-      Run("noisy", random, truth, loss, defaults.max_samples, sweep_repetitions);
+  const int sweep_repetitions = quick ? 1 : std::max(1, (repetitions + 1) / 2);  // 5 -> 3
+  const auto sweep = [&](const char* name, const std::vector<size_t>& sample_counts, Noise noise) {
+    for (size_t count : sample_counts) {
+      const Measurement random = RandomMeasurement(truth, count, 13, 0.01, noise);
+      for (fitters::Loss loss :
+           {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+        // Up to max_samples the subsample is every sample: the two settings are the same fit.
+        if (count > defaults.max_samples) Run(name, random, truth, loss, 0, sweep_repetitions);
+        Run(name, random, truth, loss, defaults.max_samples, sweep_repetitions);
+      }
     }
-  }
+  };
+  sweep("noisy", counts, Noise::kRelative);
+  // The losses under the other noise, at three sizes (the full sweep above shows the trend).
+  sweep("additive", quick ? std::vector<size_t>{1000} : std::vector<size_t>{1000, 10000, 100000},
+        Noise::kAdditive);
   return 0;
 }

@@ -70,6 +70,12 @@ void ApertureConfiguration(const char* label, const std::string& model_text,
   const std::vector<double> densities =
       quick ? std::vector<double>{0.5, 1.0, 2.0}
             : std::vector<double>{0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0};
+  struct Row {
+    double density;
+    int points;
+    double worst, seconds;
+  };
+  std::vector<Row> rows;
   for (double density : densities) {
     sample.SetApertureDensity(instrument, density);
     const int points = sample.detector_points();
@@ -83,8 +89,13 @@ void ApertureConfiguration(const char* label, const std::string& model_text,
                                sample.Reading(instrument, wi, detectors[r % 5]);
                            }) /
                            200;
-    std::printf("%s,%g,%d,%d,%.6g,%.6g\n", label, density, points, points == default_points ? 1 : 0,
-                worst, seconds);
+    rows.push_back({density, points, worst, seconds});
+  }
+  // Densities that give the same points are the same quadrature: one row, the largest density.
+  for (size_t k = 0; k < rows.size(); ++k) {
+    if (k + 1 < rows.size() && rows[k + 1].points == rows[k].points) continue;
+    std::printf("%s,%g,%d,%d,%.6g,%.6g\n", label, rows[k].density, rows[k].points,
+                rows[k].points == default_points ? 1 : 0, rows[k].worst, rows[k].seconds);
   }
 }
 
