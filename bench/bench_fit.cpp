@@ -1,10 +1,13 @@
-// Fitting speed and accuracy (docs/fitting.md). Prints CSV on stdout, one row per
-// configuration, the median wall time of `--repetitions` runs:
-//   case,samples,loss,max_samples,median_s,max_relative_error,converged
+// Fitting speed and accuracy (docs/fitting.md, docs/speed-accuracy.md). Prints CSV on stdout,
+// one row per configuration, the median wall time of `--repetitions` runs:
+//   case,samples,loss,max_samples,median_s,max_relative_error,converged,is_default
 // Cases: "merl" fits a full 90x90x180 MERL table tabulated from an analytic blinn-phong (the
 // cells above the horizon); "random" fits N uniformly random (wi, wo) pairs, as libbsdf's
-// lbfit draws 100,000 random samples. Both are noise-free; the sweep that follows adds 1%
-// Gaussian noise, so its error measures what the sample count buys.
+// lbfit draws 100,000 random samples. Both are noise-free. The sweeps that follow add
+// Gaussian noise, so their error measures what the sample count and the loss buy: "noisy",
+// 1% of each value (multiplicative, as from a calibration or a gain), and "additive", 1% of the
+// mean value (as from a detector's read noise). `is_default` is 1 when the loss and the
+// subsample size are FitOptions' defaults (what `brdf fit` runs).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -39,19 +42,35 @@ Vec3 UniformHemisphere(std::mt19937_64& random) {
   return Vec3(r * std::cos(phi), r * std::sin(phi), z);
 }
 
-// `noise`: Gaussian, one standard deviation relative to the value.
-Measurement RandomMeasurement(const Model& truth, size_t count, uint64_t seed, double noise) {
+enum class Noise { kRelative, kAdditive };
+
+// Gaussian noise of one standard deviation `noise` times the value (kRelative) or times the
+// channel's mean value over the samples (kAdditive).
+Measurement RandomMeasurement(const Model& truth, size_t count, uint64_t seed, double noise,
+                              Noise kind = Noise::kRelative) {
   Measurement measurement;
   measurement.format = "random";
   std::mt19937_64 random(seed);
   std::normal_distribution<double> gaussian;
+  std::vector<Rgb> draws;  // standard normal, one per channel and sample
+  Rgb mean = Rgb::Zero();
   for (size_t k = 0; k < count; ++k) {
     Sample sample;
     sample.wi = UniformHemisphere(random);
     sample.wo = UniformHemisphere(random);
     sample.value = truth.Eval(sample.wi, sample.wo);
-    for (int c = 0; c < 3; ++c) sample.value[c] *= 1.0 + noise * gaussian(random);
+    Rgb draw;
+    for (int c = 0; c < 3; ++c) draw[c] = gaussian(random);
+    draws.push_back(draw);
+    mean += sample.value / static_cast<double>(count);
     measurement.samples.push_back(sample);
+  }
+  for (size_t k = 0; k < count; ++k) {
+    Sample& sample = measurement.samples[k];
+    for (int c = 0; c < 3; ++c) {
+      const double scale = kind == Noise::kRelative ? sample.value[c] : mean[c];
+      sample.value[c] += noise * scale * draws[k][c];
+    }
   }
   return measurement;
 }
@@ -83,8 +102,10 @@ void Run(const char* name, const Measurement& measurement, const Model& truth, f
     samples = fit.samples;
   }
   std::sort(times.begin(), times.end());
-  std::printf("%s,%zu,%s,%zu,%.4f,%.3g,%d\n", name, samples, fitters::LossName(loss), max_samples,
-              times[times.size() / 2], error, converged ? 1 : 0);
+  const fitters::FitOptions defaults;
+  const bool is_default = loss == defaults.loss && max_samples == defaults.max_samples;
+  std::printf("%s,%zu,%s,%zu,%.4f,%.3g,%d,%d\n", name, samples, fitters::LossName(loss),
+              max_samples, times[times.size() / 2], error, converged ? 1 : 0, is_default ? 1 : 0);
   std::fflush(stdout);
 }
 
@@ -100,20 +121,32 @@ int main(int argc, char** argv) {
     if (std::strncmp(argv[k], "--repetitions=", 14) == 0) repetitions = std::atoi(argv[k] + 14);
   }
   const Model truth = ParseModel(kTruth);
-  std::printf("case,samples,loss,max_samples,median_s,max_relative_error,converged\n");
-  const Measurement merl = MerlMeasurement(truth);
-  Run("merl", merl, truth, fitters::Loss::kL2, 20000, repetitions);
-  Run("random", RandomMeasurement(truth, 100000, 11, 0.0), truth, fitters::Loss::kL2, 20000,
-      repetitions);
-  if (quick) return 0;
+  const fitters::FitOptions defaults;
+  std::printf("case,samples,loss,max_samples,median_s,max_relative_error,converged,is_default\n");
+  Run("merl", MerlMeasurement(truth), truth, defaults.loss, defaults.max_samples, repetitions);
+  Run("random", RandomMeasurement(truth, 100000, 11, 0.0), truth, defaults.loss,
+      defaults.max_samples, repetitions);
   // Time and error against sample count, per loss, on data with 1% noise, without
   // subsampling (every solve on all samples) and with the default subsample + polish.
-  for (size_t count : {1000, 3000, 10000, 30000, 100000, 300000, 1000000}) {
-    const Measurement random = RandomMeasurement(truth, count, 13, 0.01);
-    for (fitters::Loss loss : {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
-      Run("noisy", random, truth, loss, 0, std::max(1, repetitions / 2));
+  // --quick keeps the two smallest counts and one run each: a smoke test of the sweep.
+  const std::vector<size_t> counts =
+      quick ? std::vector<size_t>{1000, 3000}
+            : std::vector<size_t>{1000, 3000, 10000, 30000, 100000, 300000, 1000000};
+  const int sweep_repetitions = quick ? 1 : std::max(1, (repetitions + 1) / 2);  // 5 -> 3
+  const auto sweep = [&](const char* name, const std::vector<size_t>& sample_counts, Noise noise) {
+    for (size_t count : sample_counts) {
+      const Measurement random = RandomMeasurement(truth, count, 13, 0.01, noise);
+      for (fitters::Loss loss :
+           {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+        // Up to max_samples the subsample is every sample: the two settings are the same fit.
+        if (count > defaults.max_samples) Run(name, random, truth, loss, 0, sweep_repetitions);
+        Run(name, random, truth, loss, defaults.max_samples, sweep_repetitions);
+      }
     }
-    Run("noisy", random, truth, fitters::Loss::kL2, 20000, std::max(1, repetitions / 2));
-  }
+  };
+  sweep("noisy", counts, Noise::kRelative);
+  // The losses under the other noise, at three sizes (the full sweep above shows the trend).
+  sweep("additive", quick ? std::vector<size_t>{1000} : std::vector<size_t>{1000, 10000, 100000},
+        Noise::kAdditive);
   return 0;
 }

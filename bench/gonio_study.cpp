@@ -1,8 +1,13 @@
-// Speed versus accuracy of the virtual gonioreflectometer (docs/gonio.md), written as CSV:
-//   gonio_study aperture     — aperture points vs error of a sharp lobe's aperture average;
+// Speed versus accuracy of the virtual gonioreflectometer (docs/gonio.md,
+// docs/speed-accuracy.md), written as CSV:
+//   gonio_study aperture     — aperture points vs error of a lobe's aperture average, for
+//                              three lobe/detector configurations;
 //   gonio_study acquisition  — raster sphere (vs mesh segments) and ray-traced height field
 //                              (vs rays) cost per sample and error against the analytic model.
-// Times are medians of `kRepeats` runs of wall-clock time. Run through bench/gonio_bench.
+// `is_default` marks what the instrument does unless told otherwise: the lobe-width rule's
+// points, Instrument's sphere segments, SurfaceSpec's rays per incidence. Times are medians of
+// `kRepeats` runs of wall-clock time. `--quick` runs a few points once (a smoke test). Run
+// through bench/gonio_bench.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -26,27 +31,30 @@ namespace brdf::gonio {
 namespace {
 
 constexpr int kRepeats = 5;
+bool quick = false;  // --quick
 
 double MedianSeconds(const std::function<void()>& run) {
+  const int repeats = quick ? 1 : kRepeats;
   std::vector<double> seconds;
-  for (int r = 0; r < kRepeats; ++r) {
+  for (int r = 0; r < repeats; ++r) {
     const auto start = std::chrono::steady_clock::now();
     run();
     seconds.push_back(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   std::sort(seconds.begin(), seconds.end());
-  return seconds[kRepeats / 2];
+  return seconds[repeats / 2];
 }
 
-// A phong lobe of width ~0.57° (n = 10^4) read through a 0.01 sr detector (3.2° radius) from a
-// point-like source, at the mirror direction and 1–4° off it. Reference: a 2000×2000 midpoint
+// A phong lobe read through a detector from a point-like source, at the mirror direction and
+// 1–4° off it; `density` scales the lobe-width rule's points. Reference: a 2000×2000 midpoint
 // rule in polar coordinates about each detector axis (tests/gonio_test_util.h).
-void ApertureStudy() {
+void ApertureConfiguration(const char* label, const std::string& model_text,
+                           double detector_solid_angle_sr) {
   Instrument instrument = testing::IdealInstrument();
-  instrument.detector_solid_angle_sr = 0.01;
+  instrument.detector_solid_angle_sr = detector_solid_angle_sr;
   instrument.source_angular_radius_deg = 0;
-  const Model model = ParseModel("phong:rho_d=0:rho_s=1:n=10000");
+  const Model model = ParseModel(model_text);
   const Vec3 wi = SphericalDirection(DegToRad(30), 0);
   std::vector<Vec3> detectors;
   for (double offset : {0.0, 1.0, 2.0, 3.0, 4.0}) {
@@ -58,8 +66,17 @@ void ApertureStudy() {
     reference.push_back(testing::ApertureAverageByGrid(model, wi, axis, cone, 2000));
   }
   ModelSample sample(model, instrument);
-  std::printf("density,detector_points,by_rule,max_relative_error,seconds_per_reading\n");
-  for (double density : {0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0}) {
+  const int default_points = sample.detector_points();  // as constructed: the rule
+  const std::vector<double> densities =
+      quick ? std::vector<double>{0.5, 1.0, 2.0}
+            : std::vector<double>{0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0};
+  struct Row {
+    double density;
+    int points;
+    double worst, seconds;
+  };
+  std::vector<Row> rows;
+  for (double density : densities) {
     sample.SetApertureDensity(instrument, density);
     const int points = sample.detector_points();
     double worst = 0;
@@ -72,8 +89,27 @@ void ApertureStudy() {
                                sample.Reading(instrument, wi, detectors[r % 5]);
                            }) /
                            200;
-    std::printf("%g,%d,%d,%.6g,%.6g\n", density, points, density == 1.0 ? 1 : 0, worst, seconds);
+    rows.push_back({density, points, worst, seconds});
   }
+  // Densities that give the same points are the same quadrature: one row, the largest density.
+  for (size_t k = 0; k < rows.size(); ++k) {
+    if (k + 1 < rows.size() && rows[k + 1].points == rows[k].points) continue;
+    std::printf("%s,%g,%d,%d,%.6g,%.6g\n", label, rows[k].density, rows[k].points,
+                rows[k].points == default_points ? 1 : 0, rows[k].worst, rows[k].seconds);
+  }
+}
+
+// Lobe width ~1/sqrt(n) rad against the detector's radius: 0.57° through 3.2° (the sharp case
+// the rule was written for), 1.8° through 3.2°, and 5.7° through 1.0° (a broad lobe, a small
+// detector: the rule's floor).
+void ApertureStudy() {
+  std::printf(
+      "configuration,density,detector_points,is_default,max_relative_error,"
+      "seconds_per_reading\n");
+  ApertureConfiguration("phong n=1e4 / 0.01 sr", "phong:rho_d=0:rho_s=1:n=10000", 0.01);
+  if (quick) return;
+  ApertureConfiguration("phong n=1e3 / 0.01 sr", "phong:rho_d=0:rho_s=1:n=1000", 0.01);
+  ApertureConfiguration("phong n=1e2 / 0.001 sr", "phong:rho_d=0:rho_s=1:n=100", 0.001);
 }
 
 // Blinn-phong (m = 200) acquired two ways, errors against the analytic reference:
@@ -84,8 +120,11 @@ void ApertureStudy() {
 //           reference = the analytic sample read through the same (ideal) instrument.
 void AcquisitionStudy() {
   const Model model = ParseModel("blinn-phong:rho_d=0.3:rho_s=0.5:m=200");
-  std::printf("method,parameter,samples,seconds,seconds_per_sample,rms_relative_error\n");
-  for (int segments : {16, 32, 64, 128, 256, 512}) {
+  std::printf(
+      "method,parameter,samples,seconds,seconds_per_sample,rms_relative_error,is_default\n");
+  const std::vector<int> segment_counts =
+      quick ? std::vector<int>{32, 256} : std::vector<int>{16, 32, 64, 128, 256, 512};
+  for (int segments : segment_counts) {
     Instrument instrument = testing::IdealInstrument();
     instrument.camera_resolution = 256;
     instrument.sphere_segments = segments;
@@ -101,8 +140,8 @@ void AcquisitionStudy() {
       sum += std::pow((s.value[0] - truth) / truth, 2);
     }
     const size_t n = view.samples.size();
-    std::printf("raster,%d,%zu,%.6g,%.6g,%.6g\n", segments, n, seconds, seconds / n,
-                std::sqrt(sum / n));
+    std::printf("raster,%d,%zu,%.6g,%.6g,%.6g,%d\n", segments, n, seconds, seconds / n,
+                std::sqrt(sum / n), segments == Instrument{}.sphere_segments ? 1 : 0);
   }
   const Instrument instrument = testing::IdealInstrument();
   const Schedule schedule = MakeSchedule("inplane:step=10");
@@ -117,7 +156,10 @@ void AcquisitionStudy() {
   spec.base = model.ToString();
   const auto sample = MakeSurfaceSample(spec, instrument);
   const auto& traced = dynamic_cast<const TracedSurfaceSample&>(*sample);
-  for (int64_t rays : {10000, 30000, 100000, 300000, 1000000, 3000000}) {
+  const std::vector<int64_t> ray_counts =
+      quick ? std::vector<int64_t>{10000, 100000}
+            : std::vector<int64_t>{10000, 30000, 100000, 300000, 1000000, 3000000};
+  for (int64_t rays : ray_counts) {
     std::vector<Rgb> readings;
     uint64_t index = 0;
     const double seconds = MedianSeconds([&] {
@@ -131,8 +173,10 @@ void AcquisitionStudy() {
       const double truth = analytic.Reading(instrument, incidence.wi, detectors[k])[0];
       sum += std::pow((readings[k][0] - truth) / truth, 2);
     }
-    std::printf("traced,%lld,%zu,%.6g,%.6g,%.6g\n", static_cast<long long>(rays), detectors.size(),
-                seconds, seconds / detectors.size(), std::sqrt(sum / detectors.size()));
+    std::printf("traced,%lld,%zu,%.6g,%.6g,%.6g,%d\n", static_cast<long long>(rays),
+                detectors.size(), seconds, seconds / detectors.size(),
+                std::sqrt(sum / detectors.size()),
+                rays == SurfaceSpec{}.rays_per_incidence ? 1 : 0);
   }
 }
 
@@ -141,12 +185,13 @@ void AcquisitionStudy() {
 
 int main(int argc, char** argv) {
   const std::string study = argc > 1 ? argv[1] : "";
+  brdf::gonio::quick = argc > 2 && std::string(argv[2]) == "--quick";
   if (study == "aperture") {
     brdf::gonio::ApertureStudy();
   } else if (study == "acquisition") {
     brdf::gonio::AcquisitionStudy();
   } else {
-    std::fprintf(stderr, "usage: gonio_study aperture|acquisition\n");
+    std::fprintf(stderr, "usage: gonio_study aperture|acquisition [--quick]\n");
     return 2;
   }
   return 0;
