@@ -23,9 +23,10 @@ ExrCompression ParseExrCompression(const std::string& name);
 // Reads the R, G, B (or luminance-only Y) and A channels of a scan-line or tiled OpenEXR file
 // as float; a missing channel reads as 0 (A as 1).
 Image ReadExr(const std::string& path);
-// Writes R, G, B, A in half or float.
-void WriteExr(const std::string& path, const Image& image, ExrPixelType type,
-              ExrCompression compression = ExrCompression::kPiz);
+// Writes R, G, B, A in half or float. Half values beyond +-65504 (the largest half) are
+// clamped to it rather than becoming infinite; returns how many channel values were clamped.
+int64_t WriteExr(const std::string& path, const Image& image, ExrPixelType type,
+                 ExrCompression compression = ExrCompression::kPiz);
 
 // Reads a Radiance RGBE file (`#?RADIANCE`, run-length encoded or flat) as linear float RGB,
 // alpha 1.
