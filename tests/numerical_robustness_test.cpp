@@ -27,7 +27,7 @@ Measurement HostileData() {
   measurement.format = "synthetic";
   std::mt19937_64 random(3);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  for (int k = 0; k < 3000; ++k) {
+  for (int k = 0; k < 1500; ++k) {
     Sample sample;
     sample.wi = SphericalDirection(std::acos(uniform(random)), 2 * kPi * uniform(random));
     // Half the outgoing directions near the mirror direction, where the lobe lives.
@@ -50,22 +50,25 @@ Measurement HostileData() {
 
 TEST(NumericalRobustness, FitsOnZerosMissingSamplesAndHugeRangeStayFinite) {
   const Measurement measurement = HostileData();
+  auto expect_finite = [&](const char* model, fitters::Loss loss, fitters::Robust robust) {
+    fitters::FitOptions options;
+    options.loss = loss;
+    options.robust = robust;
+    options.max_iterations = 50;
+    options.start_exponents = {4, 256, 16384};
+    const fitters::FitResult fit = fitters::FitModel(measurement, model, options);
+    const std::string what = std::string(model) + " loss " + fitters::LossName(loss) + " robust " +
+                             fitters::RobustName(robust);
+    for (const double param : fit.model.params()) EXPECT_TRUE(std::isfinite(param)) << what;
+    EXPECT_TRUE(std::isfinite(fit.metrics.rmse)) << what;
+    EXPECT_GT(fit.skipped, 0u) << what;  // the missing samples were left out
+  };
   for (const char* model : {"lambert", "phong", "blinn-phong", "blinn-phong-exact"}) {
     for (const fitters::Loss loss :
          {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
-      for (const fitters::Robust robust : {fitters::Robust::kNone, fitters::Robust::kCauchy}) {
-        fitters::FitOptions options;
-        options.loss = loss;
-        options.robust = robust;
-        options.max_iterations = 50;
-        const fitters::FitResult fit = fitters::FitModel(measurement, model, options);
-        const std::string what = std::string(model) + " loss " + std::to_string(int(loss)) +
-                                 " robust " + fitters::RobustName(robust);
-        for (const double param : fit.model.params()) EXPECT_TRUE(std::isfinite(param)) << what;
-        EXPECT_TRUE(std::isfinite(fit.metrics.rmse)) << what;
-        EXPECT_GT(fit.skipped, 0u) << what;  // the missing samples were left out
-      }
+      expect_finite(model, loss, fitters::Robust::kNone);
     }
+    expect_finite(model, fitters::Loss::kL2, fitters::Robust::kCauchy);
   }
 }
 
