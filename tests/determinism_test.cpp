@@ -83,8 +83,8 @@ std::string WithoutTiming(const std::string& report) {
 
 TEST(Determinism, FitReportBytesDoNotDependOnThreads) {
   ScratchDir dir;
-  const std::string common = "fit '" + DataPath("cornell-astm/cayman.astm") +
-                             "' --model blinn-phong --robust huber --out ";
+  const std::string common =
+      "fit '" + DataPath("cornell-astm/cayman.astm") + "' --model blinn-phong --out ";
   std::vector<std::string> reports;
   for (const char* run : {"1", "2", "2"}) {
     const std::string path =
