@@ -1,6 +1,7 @@
 // Every input that once broke a fuzz target (tests/fuzz/regressions/<target>/) goes through the
-// same reader again and must be rejected as a diagnosed bad input naming the file, not crash or
-// escape as another exception.
+// same reader again: it must read, or be rejected as a diagnosed bad input naming the file —
+// never crash or escape as another exception. Under scripts/sanitize the same replay fails on
+// any ASan or UBSan report, which is how the undefined behaviour the inputs once caused shows.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -40,7 +41,7 @@ std::function<void(const std::string&)> ReaderOf(const std::string& target) {
   return reader == readers.end() ? nullptr : reader->second;
 }
 
-TEST(FuzzRegressions, EverySavedInputIsADiagnosedError) {
+TEST(FuzzRegressions, EverySavedInputReadsOrIsADiagnosedError) {
   const std::filesystem::path root = testing::TestPath("fuzz/regressions");
   int inputs = 0;
   for (const auto& target : std::filesystem::directory_iterator(root)) {
@@ -51,7 +52,6 @@ TEST(FuzzRegressions, EverySavedInputIsADiagnosedError) {
       ++inputs;
       try {
         read(path);
-        ADD_FAILURE() << path << " was accepted";
       } catch (const Error& error) {
         // A model string is text, not a file: its errors quote the text instead.
         if (target.path().filename() != "fuzz_model_string") {

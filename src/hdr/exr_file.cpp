@@ -39,12 +39,14 @@ void UseAllCoresForExr() {
 }
 
 Imf::Slice FloatSlice(Image* image, int channel, int min_x, int min_y, double fill) {
-  // OpenEXR addresses pixel (x, y) of the data window at base + x*xStride + y*yStride.
+  // OpenEXR addresses pixel (x, y) of the data window at base + x*xStride + y*yStride, a base
+  // outside the buffer whenever the window does not start at (0, 0). Slice::Make computes it in
+  // integers: the pointer arithmetic `data - min_x * xStride` is undefined behaviour (the
+  // fuzzer's UBSan found it with a window starting at x = -2).
   const size_t x_stride = sizeof(float) * Image::kChannels;
   const size_t y_stride = x_stride * image->width;
-  char* base = reinterpret_cast<char*>(image->rgba.data() + channel) -
-               static_cast<ptrdiff_t>(min_x) * x_stride - static_cast<ptrdiff_t>(min_y) * y_stride;
-  return Imf::Slice(Imf::FLOAT, base, x_stride, y_stride, 1, 1, fill);
+  return Imf::Slice::Make(Imf::FLOAT, image->rgba.data() + channel, Imath::V2i(min_x, min_y),
+                          image->width, image->height, x_stride, y_stride, 1, 1, fill);
 }
 
 // A header may claim any data window; the pixels it promises must fit in the file before
