@@ -1,5 +1,5 @@
 // Image files of the HDR pipeline (DESIGN §8): OpenEXR (read, write half or float), Radiance
-// RGBE `.hdr` (read, through OpenCV) and 8-bit PNG (write, through OpenCV). Readers throw
+// RGBE `.hdr` (read, by brdfkit's own decoder) and 8-bit PNG (write, through OpenCV). Readers throw
 // InputError naming the file (and the byte where a signature is wrong); writers are atomic
 // (temporary file, then rename) and throw OutputError naming the target.
 #pragma once
