@@ -58,6 +58,36 @@ TEST(ExrFile, DataWindowAwayFromTheOriginReadsIntoPlace) {
   }
 }
 
+TEST(RadianceFile, BrokenScanLinesNameTheByte) {
+  ScratchDir dir;
+  const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n";  // 45 bytes
+  struct Case {
+    std::string name, pixels;
+    int64_t byte;
+  };
+  const Case cases[] = {
+      // A run of 9 in a line of 8 pixels: the count byte after the 4-byte marker.
+      {"long-run.hdr", std::string("\x02\x02\x00\x08\x89\x10", 6) + std::string(26, '\0'), 49},
+      // A line 16 wide in an image 8 wide.
+      {"wide.hdr", std::string("\x02\x02\x00\x10", 4) + std::string(28, '\0'), 45},
+      // Red a run of 8, green two literals of 4, blue one literal of 4 and then a count of 4
+      // with only 2 bytes left: the file ends at byte 67, inside the line.
+      {"truncated.hdr",
+       std::string("\x02\x02\x00\x08\x88\x01\x04\x01\x02\x03\x04", 11) + std::string(13, '\x04'),
+       69},
+  };
+  for (const Case& c : cases) {
+    const std::string path = dir.Write(c.name, header + c.pixels);
+    try {
+      ReadRadiance(path);
+      ADD_FAILURE() << c.name << " was accepted";
+    } catch (const ByteError& error) {
+      EXPECT_EQ(error.offset(), c.byte) << error.what();
+      EXPECT_NE(std::string(error.what()).find(path), std::string::npos) << error.what();
+    }
+  }
+}
+
 TEST(ExrFile, FloatRoundTripIsExact) {
   ScratchDir dir;
   const Image image = RandomHdrImage(37, 23, 1);
