@@ -74,7 +74,7 @@ TEST(RadianceFile, BrokenScanLinesNameTheByte) {
       // with only 2 bytes left: the file ends at byte 67, inside the line.
       {"truncated.hdr",
        std::string("\x02\x02\x00\x08\x88\x01\x04\x01\x02\x03\x04", 11) + std::string(13, '\x04'),
-       69},
+       67},
   };
   for (const Case& c : cases) {
     const std::string path = dir.Write(c.name, header + c.pixels);
