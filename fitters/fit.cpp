@@ -2,9 +2,8 @@
 
 #include <ceres/ceres.h>
 #include <glog/logging.h>
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -13,13 +12,14 @@
 #include <limits>
 #include <memory>
 #include <sstream>
-#include <thread>
 
+#include "core/deterministic_reduce.h"
 #include "core/errors.h"
 #include "core/text.h"
 #include "energy/albedo.h"
 #include "fitters/diagnostics.h"
 #include "fitters/energy_bound.h"
+#include "fitters/parallel_cost.h"
 #include "fitters/parameterization.h"
 #include "fitters/residual.h"
 
@@ -36,6 +36,12 @@ constexpr double kRankTolerance = 1e-13;
 constexpr size_t kStartSamples = 4000;
 // Reweighting rounds of the robust fit on the subsample (fit, reweight, refit).
 constexpr int kRobustRounds = 4;
+// Samples per Ceres residual block, each a ParallelBatchCost of BatchResiduals: large enough to
+// keep every thread busy inside one block, small enough that Ceres' scratch copy of a block's
+// Jacobian stays a few MB.
+constexpr size_t kSamplesPerSolverBlock = size_t{1} << 16;
+// Samples per chunk of the deterministic sums of the fit metrics.
+constexpr int64_t kMetricsGrain = 4096;
 
 // The fitter's free variables (parameterization.h); s[0] alone when the lobe is grey.
 struct Variables {
@@ -96,29 +102,40 @@ class ModelFitter {
                                                Variables* v) const {
     auto problem = std::make_unique<ceres::Problem>();
     ceres::LossFunction* const loss = nullptr;
-    const int block = options_.samples_per_block;
-    for (size_t start = 0; start < samples.size(); start += block) {
-      const int count = static_cast<int>(std::min<size_t>(block, samples.size() - start));
-      auto* residual = new BatchResidual<ModelType>(kind_, options_.grey_specular, options_.loss,
-                                                    samples.data() + start, count);
+    const size_t block = static_cast<size_t>(options_.samples_per_block);
+    const int s_size = options_.grey_specular ? 1 : 3;
+    const std::vector<int32_t> block_sizes =
+        lobed_ ? std::vector<int32_t>{3, s_size, 1} : std::vector<int32_t>{3};
+    for (size_t solver_start = 0; solver_start < samples.size();
+         solver_start += kSamplesPerSolverBlock) {
+      const size_t solver_end = std::min(samples.size(), solver_start + kSamplesPerSolverBlock);
+      std::vector<std::unique_ptr<ceres::CostFunction>> batches;
+      for (size_t start = solver_start; start < solver_end; start += block) {
+        const int count = static_cast<int>(std::min(block, solver_end - start));
+        auto* residual = new BatchResidual<ModelType>(kind_, options_.grey_specular, options_.loss,
+                                                      samples.data() + start, count);
+        if (!lobed_) {
+          batches.emplace_back(
+              new ceres::AutoDiffCostFunction<BatchResidual<ModelType>, ceres::DYNAMIC, 3>(
+                  residual, 3 * count));
+        } else if (options_.grey_specular) {
+          batches.emplace_back(
+              new ceres::AutoDiffCostFunction<BatchResidual<ModelType>, ceres::DYNAMIC, 3, 1, 1>(
+                  residual, 3 * count));
+        } else {
+          batches.emplace_back(
+              new ceres::AutoDiffCostFunction<BatchResidual<ModelType>, ceres::DYNAMIC, 3, 3, 1>(
+                  residual, 3 * count));
+        }
+      }
+      auto* cost = new ParallelBatchCost(std::move(batches), block_sizes);
       if (!lobed_) {
-        problem->AddResidualBlock(
-            new ceres::AutoDiffCostFunction<BatchResidual<ModelType>, ceres::DYNAMIC, 3>(residual,
-                                                                                         3 * count),
-            loss, v->d);
-      } else if (options_.grey_specular) {
-        problem->AddResidualBlock(
-            new ceres::AutoDiffCostFunction<BatchResidual<ModelType>, ceres::DYNAMIC, 3, 1, 1>(
-                residual, 3 * count),
-            loss, v->d, v->s, v->log_m);
+        problem->AddResidualBlock(cost, loss, v->d);
       } else {
-        problem->AddResidualBlock(
-            new ceres::AutoDiffCostFunction<BatchResidual<ModelType>, ceres::DYNAMIC, 3, 3, 1>(
-                residual, 3 * count),
-            loss, v->d, v->s, v->log_m);
+        problem->AddResidualBlock(cost, loss, v->d, v->s, v->log_m);
       }
     }
-    const int d_size = 3, s_size = options_.grey_specular ? 1 : 3;
+    const int d_size = 3;
     for (int k = 0; k < d_size; ++k) {
       problem->SetParameterLowerBound(v->d, k, -FitVariables::kLogisticBound);
       problem->SetParameterUpperBound(v->d, k, FitVariables::kLogisticBound);
@@ -138,9 +155,9 @@ class ModelFitter {
     ceres::Solver::Options solver_options;
     solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
     solver_options.max_num_iterations = max_iterations;
-    solver_options.num_threads = options_.threads > 0
-                                     ? options_.threads
-                                     : static_cast<int>(std::thread::hardware_concurrency());
+    // One solver thread: the residual blocks evaluate themselves in parallel
+    // (ParallelBatchCost), so the result does not depend on the thread count.
+    solver_options.num_threads = 1;
     solver_options.function_tolerance = 1e-12;
     solver_options.gradient_tolerance = 1e-14;
     solver_options.parameter_tolerance = 1e-12;
@@ -252,14 +269,15 @@ class ModelFitter {
       Eigen::MatrixXd a, b;
     };
     const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
-    const Sums sums = tbb::parallel_reduce(
-        tbb::blocked_range<size_t>(0, residual_blocks.size()), Sums{zero, zero},
-        [&](const tbb::blocked_range<size_t>& range, Sums partial) {
+    // One residual block per chunk (each evaluates in parallel), summed in a fixed order.
+    const Sums sums = DeterministicReduce(
+        static_cast<int64_t>(residual_blocks.size()), 1, Sums{zero, zero},
+        [&](int64_t begin, int64_t end, Sums partial) {
           std::vector<double> residuals;
           std::vector<std::vector<double>> jacobians(blocks.size());
           std::vector<double*> jacobian_pointers(blocks.size());
           Eigen::VectorXd row(n);
-          for (size_t index = range.begin(); index < range.end(); ++index) {
+          for (int64_t index = begin; index < end; ++index) {
             const ceres::CostFunction* cost =
                 problem->GetCostFunctionForResidualBlock(residual_blocks[index]);
             const int rows = cost->num_residuals();
@@ -368,10 +386,10 @@ FitMetrics ComputeMetrics(const Model& model, const std::vector<FitSample>& samp
   struct Sums {
     double weight = 0, l2 = 0, log = 0, cosine = 0;
   };
-  const Sums sums = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, samples.size()), Sums{},
-      [&](const tbb::blocked_range<size_t>& range, Sums partial) {
-        for (size_t k = range.begin(); k < range.end(); ++k) {
+  const Sums sums = DeterministicReduce(
+      static_cast<int64_t>(samples.size()), kMetricsGrain, Sums{},
+      [&](int64_t begin, int64_t end, Sums partial) {
+        for (int64_t k = begin; k < end; ++k) {
           const FitSample& sample = samples[k];
           const Rgb f = model.Eval(sample.wi, sample.wo);
           const Rgb difference = f - sample.value;
@@ -592,8 +610,13 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
   const LobeKind kind = LobeKindOf(model_name);
   const ModelInfo& info = FindModel(model_name);
   const PreparedSamples prepared = PrepareSamples(measurement, options.loss);
-  FitResult result = VisitModelType(model_name, [&](auto model_type) {
-    return RunFit<decltype(model_type)>(kind, info, prepared, options);
+  // Every parallel loop of the fit runs in an arena of `threads` workers; no result depends on
+  // their number.
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  FitResult result = arena.execute([&] {
+    return VisitModelType(model_name, [&](auto model_type) {
+      return RunFit<decltype(model_type)>(kind, info, prepared, options);
+    });
   });
   AppendFitDiagnostics(measurement, prepared, &result);  // docs/stability.md
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

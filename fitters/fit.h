@@ -27,9 +27,9 @@ struct FitOptions {
   bool grey_specular = false;  // one rho_s for all channels
   size_t max_samples = 20000;  // stratified subsample for the starts; 0 = use every sample
   uint64_t seed = 1;           // of the subsample draw
-  int threads = 0;             // 0 = all cores
+  int threads = 0;             // 0 = all cores; the result does not depend on it
   int max_iterations = 200;
-  int samples_per_block = 256;  // samples per Ceres residual block
+  int samples_per_block = 256;  // samples per batch of automatic differentiation
   // Multi-start: exponents tried from the data-driven guess of rho_d and rho_s; log-spaced
   // over the range real materials span (~1 to ~1e5).
   std::vector<double> start_exponents = {2, 8, 32, 128, 512, 2048, 8192, 32768};

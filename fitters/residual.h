@@ -1,8 +1,8 @@
 // The Ceres residual: a small templated functor over raw parameter arrays, so one definition
 // serves double and ceres::Jet (automatic differentiation), after Ceres' own examples. Each
-// block holds a batch of samples rather than one: with ~1e6 samples, per-block overhead would
-// dominate, and batches still let Ceres spread blocks over threads (docs/fitting.md measures
-// the batch size).
+// functor holds a batch of samples rather than one: with ~1e6 samples, per-sample overhead
+// would dominate, and batches are what ParallelBatchCost (parallel_cost.h) spreads over threads
+// (docs/fitting.md measures the batch size).
 #pragma once
 
 #include <cmath>

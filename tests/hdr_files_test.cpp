@@ -1,5 +1,9 @@
 // HDR image files: OpenEXR round trips (half, float), the real Radiance and OpenEXR copies of
 // Debevec's Memorial Church read to the same picture, and broken files rejected by name.
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,6 +26,66 @@ Image RandomHdrImage(int width, int height, unsigned seed) {
   std::uniform_real_distribution<float> exponent(-4.0f, 4.0f);
   for (float& value : image.rgba) value = std::pow(10.0f, exponent(random));
   return image;
+}
+
+TEST(ExrFile, DataWindowAwayFromTheOriginReadsIntoPlace) {
+  // A data window from (-2, 3) to (1, 5): 4 x 3 pixels whose top-left one is at x = -2 (the
+  // window the fuzzer used to expose undefined pointer arithmetic in the reader).
+  ScratchDir dir;
+  const Imath::Box2i window(Imath::V2i(-2, 3), Imath::V2i(1, 5));
+  std::vector<float> values(12);
+  for (int i = 0; i < 12; ++i) values[i] = 0.5f * i + 0.25f;
+  {
+    Imf::Header header(window, window);
+    header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile file(dir.File("offset.exr").c_str(), header);
+    Imf::FrameBuffer frame;
+    frame.insert(
+        "Y", Imf::Slice::Make(Imf::FLOAT, values.data(), window, sizeof(float), 4 * sizeof(float)));
+    file.setFrameBuffer(frame);
+    file.writePixels(3);
+  }
+  Image image = ReadExr(dir.File("offset.exr"));
+  ASSERT_EQ(image.width, 4);
+  ASSERT_EQ(image.height, 3);
+  for (int y = 0; y < 3; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      const float* rgba = image.pixel(x, y);
+      EXPECT_EQ(rgba[0], values[y * 4 + x]) << x << "," << y;
+      EXPECT_EQ(rgba[2], values[y * 4 + x]);  // luminance-only: grey
+      EXPECT_EQ(rgba[3], 1.0f);               // no alpha channel: opaque
+    }
+  }
+}
+
+TEST(RadianceFile, BrokenScanLinesNameTheByte) {
+  ScratchDir dir;
+  const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n";  // 45 bytes
+  struct Case {
+    std::string name, pixels;
+    int64_t byte;
+  };
+  const Case cases[] = {
+      // A run of 9 in a line of 8 pixels: the count byte after the 4-byte marker.
+      {"long-run.hdr", std::string("\x02\x02\x00\x08\x89\x10", 6) + std::string(26, '\0'), 49},
+      // A line 16 wide in an image 8 wide.
+      {"wide.hdr", std::string("\x02\x02\x00\x10", 4) + std::string(28, '\0'), 45},
+      // Red a run of 8, green two literals of 4, blue one literal of 4 and then a count of 4
+      // with only 2 bytes left: the file ends at byte 67, inside the line.
+      {"truncated.hdr",
+       std::string("\x02\x02\x00\x08\x88\x01\x04\x01\x02\x03\x04", 11) + std::string(13, '\x04'),
+       67},
+  };
+  for (const Case& c : cases) {
+    const std::string path = dir.Write(c.name, header + c.pixels);
+    try {
+      ReadRadiance(path);
+      ADD_FAILURE() << c.name << " was accepted";
+    } catch (const ByteError& error) {
+      EXPECT_EQ(error.offset(), c.byte) << error.what();
+      EXPECT_NE(std::string(error.what()).find(path), std::string::npos) << error.what();
+    }
+  }
 }
 
 TEST(ExrFile, FloatRoundTripIsExact) {

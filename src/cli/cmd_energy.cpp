@@ -102,9 +102,9 @@ Command AddEnergyCommand(CLI::App& parent) {
             const auto start = std::chrono::steady_clock::now();
             Progress progress("energy", options->albedo.theta_steps, options->quiet);
             AlbedoCurve curve;
-            // A fit report or a model string names a model; any other existing file is data.
-            if (!IsFitReportPath(options->source) &&
-                std::filesystem::is_regular_file(options->source)) {
+            // A fit report or a model string names a model; any other existing path is data
+            // (a directory or a device then gets the reader's diagnosis).
+            if (!IsFitReportPath(options->source) && std::filesystem::exists(options->source)) {
               curve = MeasuredAlbedoCurve(LoadMeasuredBrdf(options->source), options->albedo,
                                           &progress);
             } else {

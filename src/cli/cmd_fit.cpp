@@ -41,7 +41,8 @@ Command AddFitCommand(CLI::App& parent) {
                   "(0: all samples throughout)")
       ->capture_default_str();
   app->add_option("--seed", options->seed, "seed of the subsample draw")->capture_default_str();
-  app->add_option("--threads", options->threads, "Ceres threads (0: all cores)")
+  app->add_option("--threads", options->threads,
+                  "worker threads (0: all cores); the output does not depend on it")
       ->capture_default_str();
   app->add_option("--max-iterations", options->max_iterations,
                   "iterations of each Ceres solve; a fit that needs more is reported as not "

@@ -1,9 +1,12 @@
 // brdf render MODEL|FIT.json|FILE [--light ...]... [--preset NAME] [--env SPEC] [--size N]
-// [--spp N] [--seed N] [--exr OUT.exr] --out OUT.png [tone options]: a preview sphere through
-// the HDR pipeline (DESIGN §8).
+// [--spp N] [--seed N] [--threads N] [--exr OUT.exr] --out OUT.png [tone options]: a preview sphere
+// through the HDR pipeline (DESIGN §8).
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/commands.h"
 #include "cli/tone_options.h"
@@ -36,6 +39,7 @@ Command AddRenderCommand(CLI::App& parent) {
     std::vector<std::string> lights, presets;
     RenderOptions render;
     ToneArguments tone;
+    int threads = 0;
     bool quiet = false;
   };
   auto options = std::make_shared<Options>();
@@ -72,11 +76,20 @@ Command AddRenderCommand(CLI::App& parent) {
       ->capture_default_str();
   app->add_option("--seed", options->render.seed, "random seed (same image for any thread count)")
       ->capture_default_str();
+  app->add_option("--threads", options->threads,
+                  "worker threads (0 = all cores); the output does not depend on it")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
   AddToneOptions(app, &options->tone);
   app->add_flag("--quiet", options->quiet, "print nothing on success; no progress");
 
   return {
       app, [options]() {
+        std::optional<tbb::global_control> thread_limit;
+        if (options->threads > 0) {
+          thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                               static_cast<size_t>(options->threads));
+        }
         options->render.Validate();
         const ToneOptions tone = options->tone.Resolve();
         const ExrCompression exr_compression = ParseExrCompression(options->exr_compression);
@@ -112,9 +125,15 @@ Command AddRenderCommand(CLI::App& parent) {
           }
         }
         if (!options->exr.empty()) {
-          WriteExr(options->exr, render.radiance,
-                   options->exr_type == "half" ? ExrPixelType::kHalf : ExrPixelType::kFloat,
-                   exr_compression);
+          const int64_t clamped =
+              WriteExr(options->exr, render.radiance,
+                       options->exr_type == "half" ? ExrPixelType::kHalf : ExrPixelType::kFloat,
+                       exr_compression);
+          if (clamped > 0) {
+            std::cerr << "brdf render: warning: " << options->exr << ": " << clamped
+                      << " values above the half-float maximum 65504 were clamped to it (use "
+                         "--exr-type float)\n";
+          }
         }
         std::string comparison;
         ToneResult toned;

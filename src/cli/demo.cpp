@@ -205,7 +205,11 @@ DemoResult RunDemo(const DemoOptions& options) {
   const std::vector<std::string> bundled = FindMeasurements(options.data_dir);
   if (bundled.empty()) throw UsageError(options.data_dir + ": no measurement files found");
   for (const char* sub : {"measurements", "fits", "images"}) {
-    fs::create_directories(options.out_dir + "/" + sub);
+    std::error_code error;
+    fs::create_directories(options.out_dir + "/" + sub, error);
+    if (error) {
+      throw OutputError(options.out_dir, "cannot create the output directory: " + error.message());
+    }
   }
   // Real data fitted: every Cornell sample and the Zemax file; the pbrt-v2 copies of the
   // Cornell files hold the same numbers, so only mystique (pbrt-v2 only) is added.

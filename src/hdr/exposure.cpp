@@ -2,15 +2,18 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
 
+#include "core/deterministic_reduce.h"
 #include "core/errors.h"
 
 namespace brdf {
 namespace {
+
+// Pixels per chunk of the log-average sum.
+constexpr int64_t kPixelGrain = 16384;
 
 struct LogSum {
   double log_sum = 0.0;
@@ -23,10 +26,12 @@ struct LogSum {
 }  // namespace
 
 SceneLuminance MeasureSceneLuminance(const Image& image, double delta) {
-  const LogSum total = tbb::parallel_reduce(
-      tbb::blocked_range<int64_t>(0, image.pixel_count()), LogSum{},
-      [&](const tbb::blocked_range<int64_t>& range, LogSum sum) {
-        for (int64_t i = range.begin(); i < range.end(); ++i) {
+  // A fixed summation order: the exposure, and so every output byte, must not depend on the
+  // thread count.
+  const LogSum total = DeterministicReduce(
+      image.pixel_count(), kPixelGrain, LogSum{},
+      [&](int64_t begin, int64_t end, LogSum sum) {
+        for (int64_t i = begin; i < end; ++i) {
           const float* rgba = image.rgba.data() + i * Image::kChannels;
           if (!(rgba[3] > 0.0f)) continue;
           const float luminance = std::max(0.0f, PixelLuminance(rgba));

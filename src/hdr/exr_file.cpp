@@ -10,6 +10,7 @@
 #include <half.h>
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <fstream>
 #include <mutex>
@@ -17,6 +18,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/text.h"
 #include "hdr/image_files.h"
 
 namespace brdf {
@@ -37,17 +39,51 @@ void UseAllCoresForExr() {
 }
 
 Imf::Slice FloatSlice(Image* image, int channel, int min_x, int min_y, double fill) {
-  // OpenEXR addresses pixel (x, y) of the data window at base + x*xStride + y*yStride.
+  // OpenEXR addresses pixel (x, y) of the data window at base + x*xStride + y*yStride, a base
+  // outside the buffer whenever the window does not start at (0, 0). Slice::Make computes it in
+  // integers: the pointer arithmetic `data - min_x * xStride` is undefined behaviour (the
+  // fuzzer's UBSan found it with a window starting at x = -2).
   const size_t x_stride = sizeof(float) * Image::kChannels;
   const size_t y_stride = x_stride * image->width;
-  char* base = reinterpret_cast<char*>(image->rgba.data() + channel) -
-               static_cast<ptrdiff_t>(min_x) * x_stride - static_cast<ptrdiff_t>(min_y) * y_stride;
-  return Imf::Slice(Imf::FLOAT, base, x_stride, y_stride, 1, 1, fill);
+  return Imf::Slice::Make(Imf::FLOAT, image->rgba.data() + channel, Imath::V2i(min_x, min_y),
+                          image->width, image->height, x_stride, y_stride, 1, 1, fill);
+}
+
+// A header may claim any data window; the pixels it promises must fit in the file before
+// width x height float pixels are allocated. Uncompressed pixels take their full size; no
+// lossless codec of OpenEXR packs more than about 1000:1 (deflate's limit is 1032:1; PIZ and
+// RLE on constant data do less), so 4096:1 is a bound no real file reaches.
+void CheckExrSize(const Imf::Header& header, int64_t pixels, int64_t file_size,
+                  const std::string& path) {
+  constexpr double kMaxCompressionRatio = 4096.0;
+  double pixel_bytes = 0;
+  for (auto channel = header.channels().begin(); channel != header.channels().end(); ++channel) {
+    const Imf::Channel& info = channel.channel();
+    const double samples =
+        static_cast<double>(pixels) /
+        (std::max(1, info.xSampling) * static_cast<double>(std::max(1, info.ySampling)));
+    pixel_bytes += samples * (info.type == Imf::HALF ? 2 : 4);
+  }
+  const double ratio = header.compression() == Imf::NO_COMPRESSION ? 1.0 : kMaxCompressionRatio;
+  if (pixel_bytes > ratio * static_cast<double>(file_size)) {
+    // Name the byte of the dataWindow attribute (headers are small: look in the first 64 kB).
+    std::string head(65536, '\0');
+    std::ifstream stream(path, std::ios::binary);
+    stream.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<size_t>(std::max<std::streamsize>(0, stream.gcount())));
+    const size_t attribute = head.find(std::string("dataWindow\0box2i", 16));
+    throw ByteError(path, attribute == std::string::npos ? 0 : static_cast<int64_t>(attribute),
+                    "the header's data window promises " + std::to_string(pixels) + " pixels (" +
+                        std::to_string(static_cast<int64_t>(pixel_bytes)) +
+                        " bytes), more than a file of " + std::to_string(file_size) +
+                        " bytes can hold");
+  }
 }
 
 }  // namespace
 
 Image ReadExr(const std::string& path) {
+  const int64_t file_size = RegularFileSize(path);  // a directory or a device is named as such
   if (!std::ifstream(path)) throw InputError(path, "cannot open the file");
   UseAllCoresForExr();
   try {
@@ -63,6 +99,7 @@ Image ReadExr(const std::string& path) {
     const int width = static_cast<int>(width64), height = static_cast<int>(height64);
     CheckImageSize(width, height, path);
     const Imf::ChannelList& channels = file.header().channels();
+    CheckExrSize(file.header(), width64 * height64, file_size, path);
     const bool has_rgb =
         channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
     const bool has_y = channels.findChannel("Y") != nullptr;
@@ -102,9 +139,10 @@ ExrCompression ParseExrCompression(const std::string& name) {
   throw UsageError("unknown OpenEXR compression '" + name + "', expected zip, piz, rle or none");
 }
 
-void WriteExr(const std::string& path, const Image& image, ExrPixelType type,
-              ExrCompression compression) {
+int64_t WriteExr(const std::string& path, const Image& image, ExrPixelType type,
+                 ExrCompression compression) {
   CheckImageSize(image.width, image.height, path);
+  int64_t clamped_values = 0;
   UseAllCoresForExr();
   const Imf::PixelType pixel_type = type == ExrPixelType::kHalf ? Imf::HALF : Imf::FLOAT;
   WriteFileAtomicallyByName(path, [&](const std::string& temporary) {
@@ -137,7 +175,14 @@ void WriteExr(const std::string& path, const Image& image, ExrPixelType type,
       // frame buffer.
       std::vector<half> halves;
       if (type == ExrPixelType::kHalf) {
-        halves.assign(image.rgba.begin(), image.rgba.end());
+        // Beyond the largest half (65504) the conversion gives infinity: such values are
+        // clamped to it (and counted for the caller's warning), finite as they were.
+        halves.reserve(image.rgba.size());
+        for (const float value : image.rgba) {
+          const bool beyond = std::isfinite(value) && std::abs(value) > HALF_MAX;
+          if (beyond) ++clamped_values;
+          halves.emplace_back(beyond ? std::copysign(HALF_MAX, value) : value);
+        }
         const size_t x_stride = sizeof(half) * Image::kChannels;
         for (int c = 0; c < Image::kChannels; ++c) {
           frame.insert(names[c], Imf::Slice(Imf::HALF, reinterpret_cast<char*>(halves.data() + c),
@@ -155,6 +200,7 @@ void WriteExr(const std::string& path, const Image& image, ExrPixelType type,
       throw OutputError(path, "cannot write OpenEXR: " + OneLine(error.what()));
     }
   });
+  return clamped_values;
 }
 
 }  // namespace brdf

@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/text.h"
 
 namespace brdf {
 namespace {
@@ -19,6 +20,7 @@ constexpr char kExrMagic[4] = {0x76, 0x2f, 0x31, 0x01};
 }  // namespace
 
 Image ReadHdrImage(const std::string& path) {
+  RegularFileSize(path);  // a directory or a device is named as such, not misread
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path, "cannot open the file");
   char head[4] = {0, 0, 0, 0};

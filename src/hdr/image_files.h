@@ -1,5 +1,5 @@
 // Image files of the HDR pipeline (DESIGN §8): OpenEXR (read, write half or float), Radiance
-// RGBE `.hdr` (read, through OpenCV) and 8-bit PNG (write, through OpenCV). Readers throw
+// RGBE `.hdr` (read, by brdfkit's own decoder) and 8-bit PNG (write, through OpenCV). Readers throw
 // InputError naming the file (and the byte where a signature is wrong); writers are atomic
 // (temporary file, then rename) and throw OutputError naming the target.
 #pragma once
@@ -23,9 +23,10 @@ ExrCompression ParseExrCompression(const std::string& name);
 // Reads the R, G, B (or luminance-only Y) and A channels of a scan-line or tiled OpenEXR file
 // as float; a missing channel reads as 0 (A as 1).
 Image ReadExr(const std::string& path);
-// Writes R, G, B, A in half or float.
-void WriteExr(const std::string& path, const Image& image, ExrPixelType type,
-              ExrCompression compression = ExrCompression::kPiz);
+// Writes R, G, B, A in half or float. Half values beyond +-65504 (the largest half) are
+// clamped to it rather than becoming infinite; returns how many channel values were clamped.
+int64_t WriteExr(const std::string& path, const Image& image, ExrPixelType type,
+                 ExrCompression compression = ExrCompression::kPiz);
 
 // Reads a Radiance RGBE file (`#?RADIANCE`, run-length encoded or flat) as linear float RGB,
 // alpha 1.

@@ -9,7 +9,9 @@
 // Header lines begin with a letter; VARS, which names the columns of the rows, ends the header.
 #include <algorithm>
 #include <cctype>
+#include <iterator>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -99,6 +101,9 @@ Measurement ReadAstm(const std::string& path, const ReadOptions& options) {
   measurement.source = path;
 
   int64_t num_points = -1;
+  // Where each header key the reader uses was first seen: a second line for one, even an
+  // agreeing one, leaves the reader guessing which the writer meant.
+  std::map<std::string, int64_t, std::less<>> key_lines;
   std::vector<std::string> column_names;
   std::optional<SpectralRecords> records;  // once VARS has named the columns
   std::vector<double> record;
@@ -115,8 +120,15 @@ Measurement ReadAstm(const std::string& path, const ReadOptions& options) {
       const std::string_view key = line.substr(0, space);
       const std::string_view value =
           space == std::string_view::npos ? std::string_view() : Trim(line.substr(space));
+      const bool used =
+          key == "NUM_POINTS" ||
+          std::any_of(std::begin(kHeaderKeys), std::end(kHeaderKeys),
+                      [&](const HeaderKey& header_key) { return key == header_key.astm; });
+      if (used && !key_lines.emplace(std::string(key), reader.line_number()).second) {
+        reader.Fail("second " + std::string(key) + " line (first on line " +
+                    std::to_string(key_lines.find(key)->second) + ")");
+      }
       if (key == "NUM_POINTS") {
-        if (num_points >= 0) reader.Fail("second NUM_POINTS line");
         num_points = ParseCount(reader, value, "NUM_POINTS", std::numeric_limits<int64_t>::max());
         if (num_points == 0) reader.Fail("NUM_POINTS is 0: the file holds no data");
         if (num_points > kMaxAstmBytes / kMinRowBytes) {

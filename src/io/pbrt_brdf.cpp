@@ -61,6 +61,7 @@ Measurement ReadPbrtBrdf(const std::string& path, const ReadOptions& options) {
   std::vector<std::string> header_comments;
   bool in_header = true;
   int64_t wavelength_count = -1;
+  int64_t count_comment_line = 0;  // where "# num wls" is; 0 until seen
   std::vector<double> wavelengths_nm;
   std::optional<SpectralRecords> records;  // once the wavelengths are known
   std::vector<double> record;
@@ -71,7 +72,15 @@ Measurement ReadPbrtBrdf(const std::string& path, const ReadOptions& options) {
     const size_t hash = line.find('#');
     if (hash != std::string_view::npos) {
       const std::string_view comment = Trim(line.substr(hash + 1));
-      if (comment == kWavelengthCountComment) in_header = false;
+      if (comment == kWavelengthCountComment) {
+        // A second count line would leave the reader guessing which count the writer meant.
+        if (count_comment_line != 0) {
+          reader.Fail("second '# num wls' line (first on line " +
+                      std::to_string(count_comment_line) + ")");
+        }
+        count_comment_line = reader.line_number();
+        in_header = false;
+      }
       if (in_header && !comment.empty()) header_comments.emplace_back(comment);
       line = line.substr(0, hash);
     }

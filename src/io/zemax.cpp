@@ -97,6 +97,16 @@ KeywordLine SplitKeyword(std::string_view line) {
   return {line.substr(0, space), Trim(line.substr(space))};
 }
 
+// A header keyword may appear once: a second line, even one that agrees, leaves the reader
+// guessing which the writer meant. `*first_line` is where the keyword was first seen (0: not yet).
+void ExpectFirst(const LineReader& reader, const char* keyword, int64_t* first_line) {
+  if (*first_line != 0) {
+    reader.Fail(std::string("second ") + keyword + " line (first on line " +
+                std::to_string(*first_line) + ")");
+  }
+  *first_line = reader.line_number();
+}
+
 // One angle list: "AngleOfIncidence 13" followed by its 13 values (on one or more lines).
 struct AngleList {
   AngleList(const char* keyword, double max_deg, bool max_included)
@@ -109,11 +119,7 @@ struct AngleList {
 };
 
 void ReadAngleList(LineReader* reader, std::string_view count_field, AngleList* list) {
-  if (list->line != 0) {
-    reader->Fail(std::string("second ") + list->keyword + " line (first on line " +
-                 std::to_string(list->line) + ")");
-  }
-  list->line = reader->line_number();
+  ExpectFirst(*reader, list->keyword, &list->line);
   const int64_t count = ParseCount(*reader, count_field, list->keyword, kMaxAngles);
   if (count == 0) reader->Fail(std::string(list->keyword) + " lists no angles");
   const std::string range =
@@ -182,7 +188,7 @@ Measurement ReadZemax(const std::string& path, const ReadOptions&) {
 
   // Header: keyword lines up to DataBegin.
   std::string comments, symmetry, spectral_content;
-  int64_t symmetry_line = 0, spectral_line = 0, scatter_type_line = 0;
+  int64_t source_line = 0, symmetry_line = 0, spectral_line = 0, scatter_type_line = 0;
   AngleList rotations{"SampleRotation", 360.0, true};
   AngleList incidences{"AngleOfIncidence", 90.0, false};
   AngleList azimuths{"ScatterAzimuth", 360.0, true};
@@ -200,24 +206,25 @@ Measurement ReadZemax(const std::string& path, const ReadOptions&) {
     }
     const KeywordLine header = SplitKeyword(line);
     if (header.keyword == "Source") {
+      ExpectFirst(reader, "Source", &source_line);
       metadata["data_source"] = std::string(header.value);
     } else if (header.keyword == "Symmetry") {
+      ExpectFirst(reader, "Symmetry", &symmetry_line);
       symmetry = std::string(header.value);
-      symmetry_line = reader.line_number();
       if (!EqualsIgnoringCase(symmetry, "PlaneSymmetrical") &&
           !EqualsIgnoringCase(symmetry, "Asymmetrical")) {
         reader.Fail("Symmetry '" + symmetry +
                     "' is not supported (brdfkit reads PlaneSymmetrical and Asymmetrical)");
       }
     } else if (header.keyword == "SpectralContent") {
+      ExpectFirst(reader, "SpectralContent", &spectral_line);
       spectral_content = std::string(header.value);
-      spectral_line = reader.line_number();
       if (!EqualsIgnoringCase(spectral_content, "Monochrome")) {
         reader.Fail("SpectralContent '" + spectral_content +
                     "' is not supported (brdfkit reads Monochrome)");
       }
     } else if (header.keyword == "ScatterType") {
-      scatter_type_line = reader.line_number();
+      ExpectFirst(reader, "ScatterType", &scatter_type_line);
       if (!EqualsIgnoringCase(header.value, "BRDF")) {
         reader.Fail("ScatterType '" + std::string(header.value) +
                     "' is not supported: brdfkit reads reflection data (BRDF)");

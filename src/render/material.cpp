@@ -148,16 +148,18 @@ class TabulatedMaterial : public Material {
   std::optional<LobeCoordinates> lobe_;
 };
 
-bool IsRegularFile(const std::string& path) {
+// Any existing path is data, even a directory or a device: the reader then says what is wrong
+// with it instead of "not a model string".
+bool PathExists(const std::string& path) {
   struct stat info;
-  return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode);
+  return ::stat(path.c_str(), &info) == 0;
 }
 
 }  // namespace
 
 std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
   if (IsFitReportPath(spec)) return std::make_unique<ModelMaterial>(LoadModel(spec));
-  if (!IsRegularFile(spec)) {
+  if (!PathExists(spec)) {
     const std::string name = spec.substr(0, spec.find(':'));
     for (const ModelInfo& info : ModelRegistry()) {
       if (info.name == name) return std::make_unique<ModelMaterial>(LoadModel(spec));

@@ -2,14 +2,12 @@
 // FileFormat name). The input becomes a file, as users give it; every outcome but a clean read
 // or a brdf::Error (a one-line diagnosis) is a finding: a crash, a sanitizer report, another
 // exception type, a hang or a leak.
-#include <unistd.h>
-
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <string>
 
 #include "core/errors.h"
+#include "fuzz_util.h"
 #include "io/formats.h"
 
 namespace {
@@ -24,24 +22,10 @@ const brdf::FileFormat& Format() {
   return *format;
 }
 
-// One scratch file per process, in memory where the system offers it.
-const std::string& ScratchPath() {
-  static const std::string path = [] {
-    const char* directory = access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp";
-    return std::string(directory) + "/brdfkit-fuzz-" + std::to_string(getpid()) +
-           Format().extensions.front();
-  }();
-  return path;
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::string& path = ScratchPath();
-  FILE* file = std::fopen(path.c_str(), "wb");
-  if (file == nullptr) std::abort();
-  if (size > 0 && std::fwrite(data, 1, size, file) != size) std::abort();
-  std::fclose(file);
+  const std::string& path = brdf::fuzz::WriteScratchFile(data, size, Format().extensions.front());
   try {
     const brdf::Measurement measurement = Format().read(path, brdf::ReadOptions{});
     (void)brdf::Summarize(measurement);  // what `brdf info` does next
