@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "browser_check.h"
 #include "test_util.h"
 
 namespace brdf {
@@ -152,6 +153,8 @@ TEST(Cli, QuickDemoSimulatesFitsAndReports) {
     ++images;
   }
   EXPECT_GE(images, 5);
+  // And a browser shows them.
+  ExpectReportLoadsInBrowser(dir.path());
 }
 
 }  // namespace

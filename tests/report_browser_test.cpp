@@ -1,19 +1,20 @@
 // The demo report as a user meets it: opened in a real browser (headless Chromium), every image
 // it shows must load and decode. Chromium comes from Debian (scripts/setup installs it);
-// $BRDFKIT_CHROMIUM names another binary.
+// $BRDFKIT_CHROMIUM names another binary. The quick demo's own test (cli_test.cpp) calls
+// ExpectReportLoadsInBrowser on its report, so the demo runs once.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 
+#include "browser_check.h"
 #include "test_util.h"
 
 namespace brdf {
 namespace {
 
 using testing::ReadFileText;
-using testing::RunBrdf;
 using testing::RunCommand;
 using testing::ScratchDir;
 using testing::TestPath;
@@ -49,18 +50,17 @@ std::string Verdict(const std::string& dom) {
   return dom.substr(start + open.size(), end - start - open.size());
 }
 
-TEST(ReportInBrowser, EveryImageOfTheQuickDemoLoads) {
+}  // namespace
+
+void ExpectReportLoadsInBrowser(const std::string& report_dir) {
   const std::string chromium = ChromiumBinary();
   ASSERT_FALSE(chromium.empty()) << "Chromium is missing: scripts/setup installs Debian's "
                                     "chromium package (or set BRDFKIT_CHROMIUM)";
-  ScratchDir dir;
-  const std::string out = dir.File("demo");
-  const testing::CommandResult demo = RunBrdf("demo --quick --quiet --out '" + out + "'");
-  ASSERT_EQ(demo.exit_status, 0) << demo.err;
-  std::filesystem::copy_file(TestPath("browser/image_check.html"), out + "/image_check.html");
-
-  const std::string verdict =
-      Verdict(DumpDom(chromium, out + "/image_check.html", dir.File("profile")));
+  ScratchDir profile;
+  const std::string check = report_dir + "/image_check.html";
+  std::filesystem::copy_file(TestPath("browser/image_check.html"), check);
+  const std::string verdict = Verdict(DumpDom(chromium, check, profile.File("profile")));
+  std::filesystem::remove(check);
   ASSERT_FALSE(verdict.empty()) << "the check page wrote no verdict";
   EXPECT_EQ(verdict.find("error="), std::string::npos) << verdict;
   EXPECT_NE(verdict.find("title=brdfkit demo report;"), std::string::npos) << verdict;
@@ -71,10 +71,12 @@ TEST(ReportInBrowser, EveryImageOfTheQuickDemoLoads) {
   EXPECT_GE(std::atoi(verdict.c_str() + count + 7), 10) << verdict;
 
   // Self-contained: nothing is fetched from the network.
-  const std::string html = ReadFileText(out + "/report.html");
+  const std::string html = ReadFileText(report_dir + "/report.html");
   EXPECT_EQ(html.find("src=\"http"), std::string::npos);
   EXPECT_EQ(html.find("href=\"http"), std::string::npos);
 }
+
+namespace {
 
 // The check itself must be able to fail: a report whose image is missing is caught.
 TEST(ReportInBrowser, AMissingImageIsReportedBroken) {
