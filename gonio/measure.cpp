@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/angles.h"
@@ -56,6 +57,25 @@ double ReferenceReading(const Instrument& instrument) {
 }
 
 }  // namespace
+
+Rgb PositioningSigma(const GonioSample& sample, const Instrument& instrument, const Vec3& wi,
+                     const Vec3& wo, const Rgb& reading) {
+  const double jitter = DegToRad(instrument.jitter_deg);
+  if (jitter <= 0) return Rgb::Zero();
+  if (!sample.HasExpectedReading()) {
+    // Only the detector's cosine is known without the sample's own slope: R ∝ cos(theta_o').
+    const Rgb per_cosine = reading / std::max(wo.z(), 1e-12);
+    return JitterSigma(wo, jitter, [&](const Vec3& d) -> Rgb { return per_cosine * d.z(); });
+  }
+  const auto at = [&](const Vec3& light, const Vec3& detector) -> Rgb {
+    if (light.z() <= 0 || detector.z() <= 0) return Rgb::Zero();
+    return sample.ExpectedReading(instrument, light, detector);
+  };
+  // The two arms move independently (instrument.h), so their variances add.
+  const Rgb light_arm = JitterSigma(wi, jitter, [&](const Vec3& d) { return at(d, wo); });
+  const Rgb detector_arm = JitterSigma(wo, jitter, [&](const Vec3& d) { return at(wi, d); });
+  return (light_arm.square() + detector_arm.square()).sqrt();
+}
 
 namespace {
 
@@ -228,18 +248,22 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
     }
     const Readings readings =
         sample->Measure(instrument, wi, detectors, options.seed, static_cast<uint64_t>(g));
-    for (size_t j = 0; j < indices.size(); ++j) {
+    tbb::parallel_for(size_t{0}, indices.size(), [&](size_t j) {
       const size_t index = indices[j];
-      const double cos_theta_o = incidence.detectors[index - offsets[g]].wo.z();
-      calibration.Calibrate(readings.value[j], cos_theta_o, index, &values[index], &sigmas[index]);
+      const Vec3& wo = incidence.detectors[index - offsets[g]].wo;
+      calibration.Calibrate(readings.value[j], wo.z(), index, &values[index], &sigmas[index]);
+      // Calibration is linear in the reading, so its slope carries a reading's error over.
+      const double slope = calibration.Slope(wo.z());
+      Rgb variance = sigmas[index].square();
       if (!readings.standard_error.empty()) {
-        // A traced sample's Monte Carlo error, independent of the detector noise; calibration
-        // is linear in the reading, so its slope carries the standard error over.
-        const double slope = calibration.Slope(cos_theta_o);
-        sigmas[index] =
-            (sigmas[index].square() + (slope * readings.standard_error[j]).square()).sqrt();
+        // A traced sample's Monte Carlo error, independent of the detector noise.
+        variance += (slope * readings.standard_error[j]).square();
       }
-    }
+      variance +=
+          (slope * PositioningSigma(*sample, instrument, incidence.wi, wo, readings.value[j]))
+              .square();
+      sigmas[index] = variance.sqrt();
+    });
     if (options.advance) options.advance(static_cast<int64_t>(incidence.detectors.size()));
   });
 

@@ -35,6 +35,15 @@ int64_t CountReadings(const MeasureOptions& options, const Schedule& schedule);
 
 Measurement Measure(const MeasureOptions& options, const Schedule& schedule);
 
+// One standard deviation of the reading at nominal (wi, wo) caused by the arms' positioning
+// jitter (Instrument::jitter_deg), propagated to first order through the sample's own
+// noise-free reading (GonioSample::ExpectedReading); a sample without one gets the detector
+// cosine's share only, a lower bound. `reading` is the measured R, used by that fallback.
+// Without this term the stated sigma leaves out an error that grows as tan(theta_o) toward
+// grazing and along a lobe's flanks (docs/gonio.md).
+Rgb PositioningSigma(const GonioSample& sample, const Instrument& instrument, const Vec3& wi,
+                     const Vec3& wo, const Rgb& reading);
+
 // Converts expected detector readings into calibrated BRDF values the way the instrument does
 // (instrument.h): photon counts with shot and read noise, divided by the reference's counts.
 class Calibration {

@@ -23,6 +23,10 @@ class ModelSample : public GonioSample {
 
   // The reading of one detector (exposed for the reference and for tests).
   Rgb Reading(const Instrument& instrument, const Vec3& wi, const Vec3& wo) const;
+  bool HasExpectedReading() const override { return true; }
+  Rgb ExpectedReading(const Instrument& instrument, const Vec3& wi, const Vec3& wo) const override {
+    return Reading(instrument, wi, wo);
+  }
 
   // Scales the lobe-width rule's density (for the speed/accuracy study in bench/).
   void SetApertureDensity(const Instrument& instrument, double density);

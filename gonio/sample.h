@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,16 @@ class GonioSample {
   virtual Readings Measure(const Instrument& instrument, const Vec3& wi,
                            const std::vector<Vec3>& detectors, uint64_t seed,
                            uint64_t incidence_index) const = 0;
+
+  // The noise-free reading R at exactly (wi, wo), for samples that have a cheap deterministic
+  // one (HasExpectedReading; a traced surface is Monte Carlo and has none). Measure uses it to
+  // carry the instrument's positioning jitter into the stated sigma (PositioningSigma in
+  // measure.h).
+  virtual bool HasExpectedReading() const { return false; }
+  virtual Rgb ExpectedReading(const Instrument& /*instrument*/, const Vec3& /*wi*/,
+                              const Vec3& /*wo*/) const {
+    return Rgb::Constant(std::numeric_limits<double>::quiet_NaN());
+  }
 };
 
 }  // namespace brdf::gonio

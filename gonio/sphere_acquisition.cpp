@@ -72,7 +72,8 @@ SphereAcquisition::View SphereAcquisition::Shade(const GBuffer& gbuffer, double 
   Rng jitter_rng(seed, Stream::kIncidenceJitter, view_index);
   const double g1 = jitter_rng.Normal(), g2 = jitter_rng.Normal();
   const Vec3 light_nominal(std::sin(light_angle), 0, std::cos(light_angle));
-  const Vec3 light = PerturbDirection(light_nominal, DegToRad(instrument_.jitter_deg), g1, g2);
+  const double jitter = DegToRad(instrument_.jitter_deg);
+  const Vec3 light = PerturbDirection(light_nominal, jitter, g1, g2);
   const Calibration calibration(instrument_, instrument_.reference_rho * kInvPi, seed);
   const double reference_scale = instrument_.reference_rho * kInvPi;
   // One list per row (only covered pixels), joined in row order afterwards.
@@ -105,6 +106,15 @@ SphereAcquisition::View SphereAcquisition::Shade(const GBuffer& gbuffer, double 
       Rgb value, value_sigma;
       calibration.CalibrateRatio(radiance, reference_radiance, view_index * n * n + pixel, &value,
                                  &value_sigma);
+      // The light arm's jitter, which the acquisition does not know, moves the value along the
+      // BRDF's slope in the light direction (the cosine cancels against the reference's).
+      const Rgb jitter_sigma = JitterSigma(light, jitter, [&](const Vec3& moved_light) -> Rgb {
+        if (mesh_normal.dot(moved_light) <= 0) return Rgb::Zero();
+        Vec3 moved_wi_local, moved_wo_local;
+        ToLocal(mesh_normal, moved_light, mesh_wo, &moved_wi_local, &moved_wo_local);
+        return model_.Eval(moved_wi_local, moved_wo_local);
+      });
+      value_sigma = (value_sigma.square() + jitter_sigma.square()).sqrt();
       ToLocal(normal, light_nominal, wo, &wi_local, &wo_local);
       row_samples[y].push_back({wi_local, wo_local, value, false});
       row_sigma[y].push_back(value_sigma);
