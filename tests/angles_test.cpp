@@ -7,11 +7,20 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "core/vec.h"
 
 namespace brdf {
 namespace {
+
+// How a round degree value prints (the shortest round trip: "5", "22.5").
+std::string FormatNumberForTest(double degrees) {
+  std::ostringstream out;
+  out << degrees;
+  return out.str();
+}
 
 // Uniform direction on the upper hemisphere, never exactly on the horizon.
 Vec3 RandomUpperDirection(std::mt19937* rng) {
@@ -109,6 +118,40 @@ TEST(Angles, PhiJustBelowTheXAxisStaysBelowTwoPi) {
     const double phi = Phi(Vec3(1.0, y, 0.0));
     EXPECT_GE(phi, 0.0) << "y = " << y;
     EXPECT_LT(phi, 2.0 * kPi) << "y = " << y;
+  }
+}
+
+// Read back as the native CSV reader does: degrees -> DegToRad -> SphericalDirection.
+Vec3 ReadBackDegrees(const DegreesText& text) {
+  return SphericalDirection(DegToRad(std::stod(text.theta)), DegToRad(std::stod(text.phi)));
+}
+
+// A schedule's direction made from whole or half degrees prints as those degrees (acos and the
+// conversion alone print 29.999999999999996), and reads back to the same bits.
+TEST(Angles, DirectionDegreesTextIsShortAndExactForScheduleAngles) {
+  const double thetas[] = {0, 5, 15, 22.5, 30, 45, 60, 75, 85, 89.5};
+  const double phis[] = {0, 5, 10, 90, 180, 270, 355};
+  for (double theta : thetas) {
+    for (double phi : phis) {
+      const Vec3 w = SphericalDirection(DegToRad(theta), DegToRad(phi));
+      const DegreesText text = DirectionDegreesText(w);
+      EXPECT_EQ(text.theta, FormatNumberForTest(theta)) << theta << " " << phi;
+      if (theta > 0) EXPECT_EQ(text.phi, FormatNumberForTest(phi)) << theta << " " << phi;
+      EXPECT_EQ(ReadBackDegrees(text), w) << text.theta << " " << text.phi;
+    }
+  }
+}
+
+// Any other direction keeps the shortest round trip of its degree values: nothing is lost
+// that the previous writer kept, and the direction reads back within a few units in the last
+// place.
+TEST(Angles, DirectionDegreesTextOfArbitraryDirectionsRoundTrips) {
+  std::mt19937 rng(7);
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 w = RandomUpperDirection(&rng);
+    const DegreesText text = DirectionDegreesText(w);
+    EXPECT_LE(text.theta.size(), 18u);
+    EXPECT_NEAR((ReadBackDegrees(text) - w).norm(), 0.0, 1e-15);
   }
 }
 

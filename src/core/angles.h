@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 
 #include "core/vec.h"
 
@@ -24,6 +25,16 @@ Vec3 SphericalDirection(double theta, double phi);
 double Theta(const Vec3& w);
 // Azimuth of a unit vector in [0, 2*pi); 0 for a vector on the z axis.
 double Phi(const Vec3& w);
+
+// The polar angles of unit vector w in degrees, as the shortest decimal texts that read back
+// (degrees -> DegToRad -> SphericalDirection) to exactly w: a direction made from 5 degrees
+// prints "5", not the "4.999999999999999" that acos and a degree conversion give. A direction
+// no decimal reproduces bit for bit (one made by jitter, say) prints the shortest text that reads
+// back to its degree values.
+struct DegreesText {
+  std::string theta, phi;
+};
+DegreesText DirectionDegreesText(const Vec3& w);
 
 template <typename T>
 inline T CosTheta(const Vec3T<T>& w) {

@@ -171,10 +171,9 @@ WriteReport WriteNativeCsv(const Measurement& measurement, const std::string& pa
     for (size_t k = 0; k < measurement.samples.size(); ++k) {
       const Sample& sample = measurement.samples[k];
       if (sample.missing) continue;
-      out << FormatNumber(RadToDeg(Theta(sample.wi))) << ','
-          << FormatNumber(RadToDeg(Phi(sample.wi))) << ','
-          << FormatNumber(RadToDeg(Theta(sample.wo))) << ','
-          << FormatNumber(RadToDeg(Phi(sample.wo)));
+      const DegreesText wi = DirectionDegreesText(sample.wi);
+      const DegreesText wo = DirectionDegreesText(sample.wo);
+      out << wi.theta << ',' << wi.phi << ',' << wo.theta << ',' << wo.phi;
       for (int c = 0; c < 3; ++c) out << ',' << FormatNumber(sample.value[c]);
       if (measurement.has_sigma()) {
         for (int c = 0; c < 3; ++c) out << ',' << FormatNumber(measurement.sigma[k][c]);
