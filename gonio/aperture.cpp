@@ -5,11 +5,10 @@
 #include <limits>
 
 #include "core/angles.h"
+#include "core/colour.h"
 
 namespace brdf::gonio {
 namespace {
-
-double Luminance(const Rgb& rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
 // Gauss-Legendre nodes and weights on [-1, 1]: Newton's method on the Legendre polynomial
 // P_n from the Chebyshev-like first guess cos(π(i + 3/4)/(n + 1/2)) (Abramowitz & Stegun

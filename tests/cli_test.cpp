@@ -141,8 +141,28 @@ TEST(Cli, QuickDemoSimulatesFitsAndReports) {
   EXPECT_EQ(json["datasets"][0]["chosen"], "lambert");
   EXPECT_LT(json["datasets"][0]["truth_error"].get<double>(), 0.01);
   EXPECT_LT(json["datasets"][1]["truth_error"].get<double>(), 0.03);
+  // The truth's own fit raises no warning that cries wolf (the stated sigma carries the
+  // instrument's positioning jitter): lambert on the matte sample, blinn-phong on the sphere.
+  for (int d = 0; d < 2; ++d) {
+    const std::string truth = d == 0 ? "lambert" : "blinn-phong";
+    for (const nlohmann::json& fit_path : json["datasets"][d]["fits"]) {
+      const nlohmann::json fit =
+          nlohmann::json::parse(testing::ReadFileText(dir.File(fit_path.get<std::string>())));
+      if (fit["model"] != truth) continue;
+      for (const nlohmann::json& warning : fit["warnings"]) {
+        const std::string text = warning.get<std::string>();
+        EXPECT_NE(text.rfind("model mismatch", 0), 0u) << fit_path << ": " << text;
+        EXPECT_NE(text.rfind("outliers", 0), 0u) << fit_path << ": " << text;
+      }
+    }
+  }
   const std::string html = testing::ReadFileText(dir.File("report.html"));
   EXPECT_NE(html.find("<h1>brdfkit demo report</h1>"), std::string::npos);
+  // Every dataset has its plane-of-incidence slice chart.
+  for (const nlohmann::json& dataset : json["datasets"]) {
+    const std::string slices = "images/" + dataset["name"].get<std::string>() + "-slices.png";
+    EXPECT_NE(html.find("<img src=\"" + slices + "\""), std::string::npos) << slices;
+  }
   // Every image the report links exists.
   size_t position = 0;
   int images = 0;

@@ -2,15 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 #include <vector>
 
-#include "core/atomic_file.h"
-#include "core/errors.h"
+#include "cli/chart.h"
 
 namespace brdf::cli {
 namespace {
@@ -18,28 +14,15 @@ namespace {
 constexpr int kWidth = 960, kHeight = 600;
 constexpr int kLeft = 80, kRight = 30, kTop = 50, kBottom = 60;
 constexpr double kThetaAxisDeg = 90.0;
-const cv::Scalar kBlack(0, 0, 0), kGrey(170, 170, 170), kLightGrey(225, 225, 225);
-// OpenCV stores pixels as BGR.
-const cv::Scalar kChannelColours[3] = {cv::Scalar(40, 40, 220), cv::Scalar(40, 160, 40),
-                                       cv::Scalar(220, 80, 30)};
 const char* const kChannelLabels[3] = {"red", "green", "blue"};
 
-// Smallest "nice" tick step (1, 2 or 5 times a power of ten) giving at most `ticks` ticks.
-double TickStep(double range, int ticks) {
-  const double raw = range / ticks;
-  const double power = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double factor : {1.0, 2.0, 5.0, 10.0}) {
-    if (factor * power >= raw) return factor * power;
-  }
-  return 10.0 * power;
-}
-
-// A tick value without the binary noise of repeated addition (0.6000000000000001 -> 0.6).
-std::string TickLabel(double value) {
-  std::ostringstream text;
-  text << std::setprecision(6) << value;
-  return text.str();
-}
+using chart::kBlack;
+using chart::kChannelColours;
+using chart::kGrey;
+using chart::kLightGrey;
+using chart::Label;
+using chart::TickLabel;
+using chart::TickStep;
 
 class PlotArea {
  public:
@@ -54,10 +37,6 @@ class PlotArea {
  private:
   double albedo_top_;
 };
-
-void Label(cv::Mat* image, const std::string& text, cv::Point origin, double scale = 0.5) {
-  cv::putText(*image, text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, kBlack, 1, cv::LINE_AA);
-}
 
 }  // namespace
 
@@ -103,27 +82,14 @@ void WriteAlbedoPlot(const AlbedoCurve& curve, const std::string& path) {
     Label(&image, kChannelLabels[c], legend + cv::Point(32, 5), 0.45);
   }
 
-  std::string title = "directional albedo: " + curve.source;
-  if (title.size() > 90) title = title.substr(0, 87) + "...";
-  Label(&image, title, cv::Point(kLeft, 30), 0.55);
+  Label(&image, chart::Shorten("directional albedo: " + curve.source, 90), cv::Point(kLeft, 30),
+        0.55);
   Label(&image, "theta (deg)", cv::Point(kWidth / 2 - 40, kHeight - 15));
   Label(&image, "albedo", cv::Point(8, kTop - 12));
   Label(&image, curve.conserving() ? "conserving" : "NOT conserving",
         cv::Point(kLeft + 10, kTop + 25), 0.55);
 
-  std::vector<uchar> png;
-  try {
-    if (!cv::imencode(".png", image, png)) throw OutputError(path, "PNG encoding failed");
-  } catch (const cv::Exception& error) {
-    throw OutputError(path, std::string("PNG encoding failed: ") + error.what());
-  }
-  WriteFileAtomically(
-      path,
-      [&](std::ostream& out) {
-        out.write(reinterpret_cast<const char*>(png.data()),
-                  static_cast<std::streamsize>(png.size()));
-      },
-      /*binary=*/true);
+  chart::WritePng(image, path);
 }
 
 }  // namespace brdf::cli

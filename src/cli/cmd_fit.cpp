@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/slice_plot.h"
 #include "core/atomic_file.h"
 #include "fitters/fit.h"
 #include "fitters/report.h"
@@ -16,7 +17,7 @@ namespace brdf::cli {
 
 Command AddFitCommand(CLI::App& parent) {
   struct Options {
-    std::string path, model = "auto", loss = "l2", robust = "none", out, illuminant = "D65";
+    std::string path, model = "auto", loss = "l2", robust = "none", out, illuminant = "D65", plot;
     size_t max_samples = 20000;
     uint64_t seed = 1;
     int threads = 0, max_iterations = fitters::FitOptions{}.max_iterations;
@@ -53,6 +54,9 @@ Command AddFitCommand(CLI::App& parent) {
       ->capture_default_str();
   app->add_option("--out", options->out, "write the JSON fit report here");
   app->add_flag("--json", options->json, "print the JSON report instead of the table");
+  app->add_option("--plot", options->plot,
+                  "write the plane-of-incidence slice chart here (PNG): the in-plane samples "
+                  "(+- sigma) and the fitted model, one panel per incidence, log scale");
 
   return {app, [options]() {
             fitters::FitOptions fit_options;
@@ -78,6 +82,14 @@ Command AddFitCommand(CLI::App& parent) {
             if (!options->out.empty()) {
               WriteFileAtomically(options->out,
                                   [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+            }
+            if (!options->plot.empty()) {
+              const Model& model = fit.model;
+              WriteSlicePlot(
+                  measurement,
+                  {{model.ToString(4),
+                    [&model](const Vec3& wi, const Vec3& wo) { return model.Eval(wi, wo); }}},
+                  "plane of incidence: " + options->path, options->plot);
             }
             if (options->json) {
               std::cout << report.dump(2) << "\n";

@@ -12,6 +12,7 @@
 #include <iostream>
 
 #include "cli/albedo_plot.h"
+#include "cli/slice_plot.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "energy/albedo.h"
@@ -154,6 +155,20 @@ void FitDataset(const Measurement& measurement, const DemoOptions& options,
   const std::string plot = "images/" + dataset->name + "-albedo.png";
   WriteAlbedoPlot(curve, out_dir + "/" + plot);
   dataset->images.push_back({"directional albedo of the " + chosen.model.name() + " fit", plot});
+  // The plane of incidence: the measured samples and every model's curve (Ngan et al. 2005).
+  std::vector<SliceCurve> curves;
+  for (const fitters::FitResult& fit : dataset->fits) {
+    const Model& model = fit.model;
+    curves.push_back({model.name() + (&fit == &chosen ? " (chosen)" : ""),
+                      [&model](const Vec3& wi, const Vec3& wo) { return model.Eval(wi, wo); }});
+  }
+  if (!ExtractSlices(measurement).empty()) {
+    const std::string slices = "images/" + dataset->name + "-slices.png";
+    WriteSlicePlot(measurement, curves, "plane of incidence: " + dataset->title,
+                   out_dir + "/" + slices);
+    dataset->images.push_back(
+        {"plane of incidence: measured samples (+- sigma) and every model's fit", slices});
+  }
   dataset->seconds += SecondsSince(start);
 }
 

@@ -10,8 +10,10 @@
 namespace brdf {
 
 // Rec.709 luminance weights (ITU-R BT.709).
+inline constexpr double kLuminanceWeights[3] = {0.2126, 0.7152, 0.0722};
 inline double Luminance(const Rgb& rgb) {
-  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+  return kLuminanceWeights[0] * rgb[0] + kLuminanceWeights[1] * rgb[1] +
+         kLuminanceWeights[2] * rgb[2];
 }
 
 // Photometric constants: the luminous efficacy of 555 nm radiation (CIE), lux = lm/m^2.
