@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "browser_check.h"
+#include "cli/demo.h"
+#include "gonio/schedule.h"
 #include "test_util.h"
 
 namespace brdf {
@@ -115,6 +117,15 @@ TEST(Cli, UnwritableOutputIsAnErrorAndLosesNothing) {
   EXPECT_EQ(result.exit_status, 2) << result.err;
   EXPECT_EQ(testing::CountLines(result.err), 1) << result.err;
   EXPECT_EQ(dir.CountEntries(), 0);
+}
+
+// The demo measures its ray-traced surface over the hemisphere, not in the plane only: its
+// sheets then show the surface rather than an interpolation of a few in-plane readings.
+TEST(Cli, DemoTracesTheSurfaceOverTheHemisphere) {
+  const gonio::Schedule full = gonio::MakeSchedule(cli::DemoSchedule("rough-gold", false));
+  EXPECT_GE(full.CountGeometries(), 10000u);
+  EXPECT_EQ(full.kind, "hemisphere");
+  EXPECT_EQ(gonio::MakeSchedule(cli::DemoSchedule("rough-gold", true)).kind, "hemisphere");
 }
 
 TEST(Cli, QuickDemoSimulatesFitsAndReports) {

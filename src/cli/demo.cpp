@@ -85,14 +85,13 @@ std::vector<SimulatedSample> SimulatedSamples(const DemoOptions& options,
   const bool quick = options.quick;
   return {
       {"matte", "Matte paint (flat analytic sample, full hemisphere)", "lambert:rho_d=0.6,0.45,0.3",
-       "model:lambert:rho_d=0.6,0.45,0.3",
-       quick ? "hemisphere:theta_i_step=15:theta_o_step=10:phi_o_step=15" : "hemisphere"},
+       "model:lambert:rho_d=0.6,0.45,0.3", DemoSchedule("matte", quick)},
       {"plastic-sphere", "Glossy red plastic (image-based: rasterized sphere)",
        "blinn-phong:rho_d=0.25,0.05,0.04:rho_s=0.2:m=200",
        "sphere:blinn-phong:rho_d=0.25,0.05,0.04:rho_s=0.2:m=200",
-       quick ? "inplane:step=30" : "inplane:step=10"},
-      {"rough-gold", "Rough gold micro-surface (ray traced with Embree)", "",
-       "surface:" + surface_json, quick ? "inplane:step=20" : "inplane:step=10"},
+       DemoSchedule("plastic-sphere", quick)},
+      {"rough-gold", "Rough gold micro-surface (ray traced with Embree, full hemisphere)", "",
+       "surface:" + surface_json, DemoSchedule("rough-gold", quick)},
   };
 }
 

@@ -6,6 +6,7 @@
 
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/summary_report.h"
@@ -20,6 +21,18 @@ struct DemoOptions {
   bool quick = false;    // smaller simulations and fits (CI)
   bool quiet = false;
 };
+
+// The schedule each simulated sample is measured with. The rough gold surface is traced over the
+// hemisphere (11,010 geometries at 10 deg steps of theta_i) so that its sheets show the surface,
+// not an interpolation of a few in-plane readings.
+inline std::string DemoSchedule(std::string_view sample_name, bool quick) {
+  if (sample_name == "matte") {
+    return quick ? "hemisphere:theta_i_step=15:theta_o_step=10:phi_o_step=15" : "hemisphere";
+  }
+  if (sample_name == "plastic-sphere") return quick ? "inplane:step=30" : "inplane:step=10";
+  return quick ? "hemisphere:theta_i_step=30:theta_o_step=10:phi_o_step=15"
+               : "hemisphere:theta_i_step=10";
+}
 
 struct DemoImage {
   std::string caption;
