@@ -66,7 +66,8 @@ Quantizer8::Quantizer8(const TransferCurve& curve) {
     float first, last;
     std::memcpy(&first, &first_bits, sizeof(first));
     std::memcpy(&last, &last_bits, sizeof(last));
-    bucket_start_[bucket] = static_cast<uint8_t>(codes_below(first));
+    const int start = codes_below(first);
+    buckets_[bucket] = {thresholds_[start], static_cast<uint8_t>(start)};
     max_codes_per_bucket_ =
         std::max(max_codes_per_bucket_, codes_below(std::min(last, 1.0f)) - codes_below(first));
   }

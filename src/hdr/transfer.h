@@ -38,9 +38,12 @@ class Quantizer8 {
     if (linear >= 1.0f) return 255;
     uint32_t bits;
     std::memcpy(&bits, &linear, sizeof(bits));
-    int code = bucket_start_[bits >> kBucketShift];
-    // A fixed number of steps without branches (a data-dependent loop exit mispredicts).
-    for (int step = 0; step < max_codes_per_bucket_; ++step) code += linear >= thresholds_[code];
+    const Bucket& bucket = buckets_[bits >> kBucketShift];
+    int code = bucket.start + (linear >= bucket.next);
+    // A fixed number of further steps without branches (a data-dependent loop exit
+    // mispredicts); none for the sRGB curve and gammas near it, where no bucket holds more
+    // than one code change.
+    for (int step = 1; step < max_codes_per_bucket_; ++step) code += linear >= thresholds_[code];
     return static_cast<uint8_t>(code);
   }
 
@@ -49,7 +52,13 @@ class Quantizer8 {
   static constexpr int kBuckets = (0x3f800000 >> kBucketShift) + 1;  // floats in [0, 1]
   // Code k + 1 starts at thresholds_[k]; thresholds_[255] = infinity stops the count at 255.
   std::array<float, 256> thresholds_;
-  std::array<uint8_t, kBuckets> bucket_start_;
+  // The code at the start of a bucket and the threshold of the next one, side by side: one
+  // load finds both.
+  struct Bucket {
+    float next;
+    uint8_t start;
+  };
+  std::array<Bucket, kBuckets> buckets_;
   int max_codes_per_bucket_ = 0;  // most code changes inside one bucket
 };
 
