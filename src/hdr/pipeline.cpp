@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <vector>
 
 #include "core/errors.h"
@@ -190,10 +191,17 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   const bool reinhard = options.tone_operator == ToneOperator::kReinhard ||
                         options.tone_operator == ToneOperator::kReinhardExtended;
   SceneLuminance mapped;
+  // With dual-filter bloom a row costs its doubling step (13 taps a pixel): the statistics
+  // pass keeps the rows it makes for the last pass, which then reads them instead (one write
+  // and one read of the frame cost less than the taps again).
+  std::unique_ptr<float[]> kept;
   if (reinhard) {
-    mapped = MeasureSceneLuminanceByRow(
-        width, image.height, options.delta,
-        [&](int y, float* scratch) { return rows.Row(y, scratch, scratch + row_floats); });
+    if (bloom_is_half) kept.reset(new float[image.pixel_count() * Image::kChannels]);
+    mapped =
+        MeasureSceneLuminanceByRow(width, image.height, options.delta, [&](int y, float* scratch) {
+          float* target = kept ? kept.get() + y * row_floats : scratch;
+          return rows.Row(y, target, scratch + row_floats);
+        });
   }
   result.mapping = PlanToneMapping(options.tone_operator, mapped, options.key, options.white);
 
@@ -208,7 +216,8 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
       std::vector<float> scratch(2 * row_floats);
       const int y1 = std::min(image.height, (task + 1) * kRowsPerTask);
       for (int y = task * kRowsPerTask; y < y1; ++y) {
-        const float* row = rows.Row(y, scratch.data(), scratch.data() + row_floats);
+        const float* row = kept ? kept.get() + y * row_floats
+                                : rows.Row(y, scratch.data(), scratch.data() + row_floats);
         uint8_t* out = display.rgb.data() + int64_t{y} * width * 3;
         for (int x = 0; x < width; ++x) {
           float mapped_rgb[3];
