@@ -214,18 +214,16 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   ForToneOperator(result.mapping, [&](const auto& map) {
     tbb::parallel_for(0, tasks, [&](int task) {
       std::vector<float> scratch(2 * row_floats);
+      std::vector<float> mapped(int64_t{width} * 3);  // one row tone mapped, RGB
       const int y1 = std::min(image.height, (task + 1) * kRowsPerTask);
       for (int y = task * kRowsPerTask; y < y1; ++y) {
         const float* row = kept ? kept.get() + y * row_floats
                                 : rows.Row(y, scratch.data(), scratch.data() + row_floats);
         uint8_t* out = display.rgb.data() + int64_t{y} * width * 3;
         for (int x = 0; x < width; ++x) {
-          float mapped_rgb[3];
-          map(row + int64_t{x} * Image::kChannels, mapped_rgb);
-          out[3 * x] = quantize(mapped_rgb[0]);
-          out[3 * x + 1] = quantize(mapped_rgb[1]);
-          out[3 * x + 2] = quantize(mapped_rgb[2]);
+          map(row + int64_t{x} * Image::kChannels, mapped.data() + 3 * x);
         }
+        quantize.EncodeMany(mapped.data(), int64_t{width} * 3, out);
       }
     });
   });
