@@ -62,36 +62,53 @@ struct LaneSums {
   Int4 black{0, 0, 0, 0};
 };
 
-// Folds one row into `sums`: four pixels at a time, their luminance and its logarithm, the
-// sums in double.
-void AddRow(const float* row, int width, float delta, LaneSums* sums) {
+// Folds four pixels (alpha and luminance clamped at 0; padding lanes have alpha 0) into `sums`.
+inline void AddFour(const Float4& luminance, const Float4& alpha, float delta, LaneSums* sums) {
   constexpr float kLargest = std::numeric_limits<float>::max();
   constexpr float kSmallest = std::numeric_limits<float>::min();  // the least normal float
-  for (int x0 = 0; x0 < width; x0 += 4) {
-    const int n = std::min(4, width - x0);
-    Float4 luminance{0, 0, 0, 0}, alpha{0, 0, 0, 0};
-    for (int k = 0; k < n; ++k) {
+  const Float4 argument = delta + luminance;
+  Float4 logs;
+  const Int4 normal = (argument <= kLargest) & (argument >= kSmallest);
+  if (normal[0] & normal[1] & normal[2] & normal[3]) {
+    logs = Log4(argument);
+  } else {  // an infinite pixel or a subnormal delta: the library's log
+    for (int k = 0; k < 4; ++k) logs[k] = std::log(argument[k]);
+  }
+  const Int4 counted = alpha > 0.0f;  // all ones where true
+  const Int4 lit = counted & (luminance > 0.0f);
+  const Float4 zero{0, 0, 0, 0};
+  sums->log_sum += __builtin_convertvector(counted ? logs : zero, Double4);
+  sums->lit_log_sum += __builtin_convertvector(lit ? logs : zero, Double4);
+  sums->max = (counted & (luminance > sums->max)) ? luminance : sums->max;
+  sums->pixels -= counted;
+  sums->black -= counted & ~lit;
+}
+
+// Folds one row into `sums`, four pixels at a time, the sums in double. The sums are kept in
+// a local while the row is read: a vector of floats may alias the row, so through the pointer
+// they would be stored and reloaded for every four pixels.
+void AddRow(const float* row, int width, float delta, LaneSums* sums) {
+  LaneSums local = *sums;
+  const Float4 zero{0, 0, 0, 0};
+  int x0 = 0;
+  for (; x0 + 4 <= width; x0 += 4) {
+    const float* p = row + int64_t{x0} * Image::kChannels;
+    const Float4 r{p[0], p[4], p[8], p[12]}, g{p[1], p[5], p[9], p[13]},
+        b{p[2], p[6], p[10], p[14]}, alpha{p[3], p[7], p[11], p[15]};
+    // PixelLuminance's operations in its order, then std::max(0, L) (NaN gives 0).
+    const Float4 luminance = 0.2126f * r + 0.7152f * g + 0.0722f * b;
+    AddFour(luminance > 0.0f ? luminance : zero, alpha, delta, &local);
+  }
+  if (x0 < width) {
+    Float4 luminance = zero, alpha = zero;
+    for (int k = 0; x0 + k < width; ++k) {
       const float* rgba = row + int64_t{x0 + k} * Image::kChannels;
       alpha[k] = rgba[3];
       luminance[k] = std::max(0.0f, PixelLuminance(rgba));
     }
-    const Float4 argument = delta + luminance;
-    Float4 logs;
-    const Int4 normal = (argument <= kLargest) & (argument >= kSmallest);
-    if (normal[0] & normal[1] & normal[2] & normal[3]) {
-      logs = Log4(argument);
-    } else {  // an infinite pixel or a subnormal delta: the library's log
-      for (int k = 0; k < 4; ++k) logs[k] = std::log(argument[k]);
-    }
-    const Int4 counted = alpha > 0.0f;  // all ones where true; the padding lanes have alpha 0
-    const Int4 lit = counted & (luminance > 0.0f);
-    const Float4 zero{0, 0, 0, 0};
-    sums->log_sum += __builtin_convertvector(counted ? logs : zero, Double4);
-    sums->lit_log_sum += __builtin_convertvector(lit ? logs : zero, Double4);
-    sums->max = (counted & (luminance > sums->max)) ? luminance : sums->max;
-    sums->pixels -= counted;
-    sums->black -= counted & ~lit;
+    AddFour(luminance, alpha, delta, &local);
   }
+  *sums = local;
 }
 
 LogSum Join(const LaneSums& lanes) {
