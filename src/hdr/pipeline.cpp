@@ -115,23 +115,25 @@ class ExposedRows {
 
   // Row y into `scratch` (width * 4 floats); `bloom_scratch` has as much room again.
   const float* Row(int y, float* scratch, float* bloom_scratch) const {
-    const int width = image_.width;
+    const int64_t floats = int64_t{image_.width} * Image::kChannels;
     const float* in = image_.pixel(0, y);
+    // Locals, not members, in the loops: a store to a float row may alias a float member.
+    const float scale = scale_, strength = strength_;
     if (bloom_ == nullptr) {
-      for (int64_t i = 0; i < int64_t{width} * Image::kChannels; i += Image::kChannels) {
-        scratch[i] = in[i] * scale_;
-        scratch[i + 1] = in[i + 1] * scale_;
-        scratch[i + 2] = in[i + 2] * scale_;
+      for (int64_t i = 0; i < floats; i += Image::kChannels) {
+        scratch[i] = in[i] * scale;
+        scratch[i + 1] = in[i + 1] * scale;
+        scratch[i + 2] = in[i + 2] * scale;
         scratch[i + 3] = in[i + 3];
       }
       return scratch;
     }
     const float* add = bloom_is_half_ ? bloom_scratch : bloom_->pixel(0, y);
-    if (bloom_is_half_) DualFilterUpRow(*bloom_, width, y, bloom_scratch);
-    for (int64_t i = 0; i < int64_t{width} * Image::kChannels; i += Image::kChannels) {
-      scratch[i] = in[i] * scale_ + strength_ * add[i];
-      scratch[i + 1] = in[i + 1] * scale_ + strength_ * add[i + 1];
-      scratch[i + 2] = in[i + 2] * scale_ + strength_ * add[i + 2];
+    if (bloom_is_half_) DualFilterUpRow(*bloom_, image_.width, y, bloom_scratch);
+    for (int64_t i = 0; i < floats; i += Image::kChannels) {
+      scratch[i] = in[i] * scale + strength * add[i];
+      scratch[i + 1] = in[i + 1] * scale + strength * add[i + 1];
+      scratch[i + 2] = in[i + 2] * scale + strength * add[i + 2];
       scratch[i + 3] = in[i + 3];
     }
     return scratch;
