@@ -5,8 +5,10 @@
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
+#include <opencv2/imgcodecs.hpp>
 #include <random>
 
 #include "core/errors.h"
@@ -193,6 +195,39 @@ TEST(PngFile, WritesWhatIsGivenAtomically) {
   EXPECT_EQ(bytes.substr(1, 3), "PNG");
   EXPECT_EQ(dir.CountEntries(), 1);
   EXPECT_THROW(WritePng(dir.path(), image), OutputError);  // a directory
+}
+
+TEST(PngFile, DecodesToThePixelsWrittenWithAnyThreadCount) {
+  // Several strips of the parallel encoder, the last one short, and an odd width.
+  Image8 image;
+  image.width = 333;
+  image.height = 3 * 64 + 17;
+  image.rgb.resize(size_t{333} * image.height * 3);
+  std::mt19937 random(11);
+  for (size_t i = 0; i < image.rgb.size(); ++i) {
+    // Smooth ramps (long runs after the Sub filter) with noise in a band (short ones).
+    const size_t pixel = i / 3;
+    const int x = static_cast<int>(pixel % image.width), y = static_cast<int>(pixel / image.width);
+    image.rgb[i] = static_cast<uint8_t>(y > 100 && y < 140 ? random() : (x + 2 * y + i % 3) % 256);
+  }
+  ScratchDir dir;
+  WritePng(dir.File("a.png"), image);
+  const cv::Mat decoded = cv::imread(dir.File("a.png"), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(decoded.type(), CV_8UC3);
+  ASSERT_EQ(decoded.cols, image.width);
+  ASSERT_EQ(decoded.rows, image.height);
+  int64_t differing = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const cv::Vec3b bgr = decoded.at<cv::Vec3b>(y, x);
+      const uint8_t* rgb = image.rgb.data() + (int64_t{y} * image.width + x) * 3;
+      differing += bgr[2] != rgb[0] || bgr[1] != rgb[1] || bgr[0] != rgb[2];
+    }
+  }
+  EXPECT_EQ(differing, 0);
+  const std::string many = EncodePng(image, "a.png");
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  EXPECT_TRUE(EncodePng(image, "a.png") == many);
 }
 
 }  // namespace

@@ -1,11 +1,14 @@
 // Tone-mapping operators and display encoding against direct computations (DESIGN §8).
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "core/errors.h"
+#include "hdr/bloom.h"
+#include "hdr/blur.h"
 #include "hdr/exposure.h"
 #include "hdr/pipeline.h"
 #include "hdr/tone_map.h"
@@ -152,6 +155,111 @@ TEST(Pipeline, AutoExposureBringsLogAverageToKey) {
   const ToneResult result = RunTonePipeline(scene, options);
   ApplyExposure(&scene, result.exposure);
   EXPECT_NEAR(MeasureSceneLuminance(scene, 1e-4 * result.exposure).log_average, options.key, 1e-5);
+}
+
+// An odd-sized scene with a few bright sources over a dim, noisy background, some black
+// pixels and some of alpha 0: every edge case of the bright pass, the blurs' borders and the
+// statistics.
+Image BloomScene(int width, int height) {
+  Image image(width, height);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      float* p = image.pixel(x, y);
+      const float base = 0.05f * uniform(random);
+      for (int c = 0; c < 3; ++c) p[c] = base * (0.5f + uniform(random));
+      if ((x * 7 + y * 3) % 29 == 0) p[0] = p[1] = p[2] = 0.0f;
+      if ((x + y * 5) % 31 == 0) p[3] = 0.0f;
+    }
+  }
+  const int sources[3][2] = {{width / 5, height / 3}, {width - 2, 1}, {width / 2, height - 3}};
+  for (const auto& source : sources) {
+    for (int dy = -2; dy <= 2; ++dy) {
+      for (int dx = -2; dx <= 2; ++dx) {
+        const int x = std::clamp(source[0] + dx, 0, width - 1);
+        const int y = std::clamp(source[1] + dy, 0, height - 1);
+        float* p = image.pixel(x, y);
+        p[0] = 300.0f, p[1] = 200.0f, p[2] = 90.0f;
+      }
+    }
+  }
+  return image;
+}
+
+// The stages one after another, each over the whole image, as pipeline.h lists them.
+Image8 StagedPipeline(Image image, const ToneOptions& options) {
+  const SceneLuminance scene = MeasureSceneLuminance(image, options.delta);
+  ApplyExposure(&image, options.exposure ? *options.exposure : AutoExposure(scene, options.key));
+  if (options.bloom != BlurKind::kNone && options.bloom_strength > 0.0) {
+    AddBloom(&image,
+             Blur(BrightPass(image, options.bloom_threshold), options.bloom, options.bloom_sigma),
+             options.bloom_strength);
+  }
+  const bool reinhard = options.tone_operator == ToneOperator::kReinhard ||
+                        options.tone_operator == ToneOperator::kReinhardExtended;
+  const SceneLuminance mapped =
+      reinhard ? MeasureSceneLuminance(image, options.delta) : SceneLuminance{};
+  ApplyToneMapping(&image,
+                   PlanToneMapping(options.tone_operator, mapped, options.key, options.white));
+  return EncodeDisplay(image, options.transfer);
+}
+
+TEST(Pipeline, FusedPassesGiveTheBytesOfTheStagesInTurn) {
+  for (const auto& [width, height] : {std::pair{97, 61}, std::pair{64, 48}, std::pair{5, 3}}) {
+    const Image scene = BloomScene(width, height);
+    for (BlurKind bloom : {BlurKind::kNone, BlurKind::kBox, BlurKind::kGaussian, BlurKind::kKawase,
+                           BlurKind::kDual}) {
+      for (ToneOperator op : {ToneOperator::kReinhardExtended, ToneOperator::kReinhard,
+                              ToneOperator::kExposure, ToneOperator::kNone}) {
+        ToneOptions options;
+        options.bloom = bloom;
+        options.bloom_sigma = 4.0;
+        options.bloom_strength = 0.3;
+        options.tone_operator = op;
+        if (op == ToneOperator::kExposure) options.exposure = 0.7;
+        if (op == ToneOperator::kNone) options.transfer = TransferCurve::Parse("2.2");
+        const Image8 fused = RunTonePipeline(scene, options).display;
+        const Image8 staged = StagedPipeline(scene, options);
+        ASSERT_EQ(fused.width, width);
+        ASSERT_EQ(fused.height, height);
+        EXPECT_TRUE(fused.rgb == staged.rgb) << width << "x" << height << " bloom "
+                                             << BlurKindName(bloom) << ", " << ToneOperatorName(op);
+      }
+    }
+  }
+}
+
+TEST(Pipeline, BytesDoNotDependOnTheThreadCount) {
+  const Image scene = BloomScene(1031, 517);  // more rows than one statistics chunk
+  ToneOptions options;
+  options.bloom = BlurKind::kDual;
+  const ToneResult many = RunTonePipeline(scene, options);
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  const ToneResult one = RunTonePipeline(scene, options);
+  EXPECT_EQ(one.exposure, many.exposure);
+  EXPECT_EQ(one.mapping.key_scale, many.mapping.key_scale);
+  EXPECT_TRUE(one.display.rgb == many.display.rgb);
+}
+
+TEST(Exposure, LogAverageMatchesADoubleSumOfLogs) {
+  // Luminances over ten decades, as an HDR photograph spans; the pass's float logarithm must
+  // not move the log-average (and so the automatic exposure) visibly.
+  Image image(1000, 100);
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> decades(-6.0, 4.0);
+  double log_sum = 0.0, max = 0.0;
+  for (int64_t i = 0; i < image.pixel_count(); ++i) {
+    float* p = image.rgba.data() + 4 * i;
+    p[0] = p[1] = p[2] = static_cast<float>(std::pow(10.0, decades(random)));
+    const double luminance = PixelLuminance(p);
+    log_sum += std::log(1e-4 + luminance);
+    max = std::max(max, luminance);
+  }
+  const SceneLuminance scene = MeasureSceneLuminance(image, 1e-4);
+  EXPECT_NEAR(scene.log_average, std::exp(log_sum / image.pixel_count()), 1e-6 * scene.log_average);
+  EXPECT_EQ(scene.max, max);
+  EXPECT_EQ(scene.pixels, image.pixel_count());
 }
 
 TEST(Pipeline, OptionsAreValidated) {

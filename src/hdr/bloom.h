@@ -8,7 +8,12 @@ namespace brdf {
 
 // Keeps what lies above `threshold` in luminance: RGB * max(0, L - T) / L, so the pass is
 // continuous at the threshold (no hard edge around bright regions) and keeps the chroma.
-Image BrightPass(const Image& image, double threshold);
+// `exposure` multiplies RGB first, as ApplyExposure does (the pipeline passes its exposure
+// here instead of rewriting the image). The bright image's alpha is 0.
+Image BrightPass(const Image& image, double threshold, double exposure = 1.0);
+// The bright pass fused into the first half-resolution step of the dual filter: equal to
+// DualFilterDown(BrightPass(image, threshold, exposure)) without the full-size bright image.
+Image BrightPassDown(const Image& image, double threshold, double exposure);
 
 // image.rgb += strength * bloom.rgb (alpha untouched); both of one size.
 void AddBloom(Image* image, const Image& bloom, double strength);

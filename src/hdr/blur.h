@@ -47,6 +47,18 @@ double KawaseSigma(const std::vector<double>& offsets);
 std::vector<double> KawaseOffsetsForSigma(double sigma);
 
 Image DualFilterBlur(const Image& image, int levels);
+// The dual filter in pieces, for a pipeline that fuses its first and last steps into passes of
+// its own (pipeline.cpp); DualFilterBlur(image, L) is the first step (DualFilterDown, or its
+// rows), then DualFilterFromHalf(., L), then the last doubling step (DualFilterUpRow per row).
+Image DualFilterDown(const Image& source);
+// Row y of the half-resolution step: rows[k] is source row 2y - 1 + k clamped to the image.
+// Writes (source_width + 1) / 2 RGBA pixels.
+void DualFilterDownRow(const float* const rows[4], int source_width, int source_height, int y,
+                       float* out);
+// From the half-resolution image: L - 1 more steps down and back up to the half resolution.
+Image DualFilterFromHalf(Image half, int levels);
+// Row y of the doubling step from `source` to a `width`-pixel-wide row: `width` RGBA pixels.
+void DualFilterUpRow(const Image& source, int width, int y, float* out);
 double DualFilterSigma(int levels);
 int DualFilterLevelsForSigma(double sigma);
 

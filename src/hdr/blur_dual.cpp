@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "core/errors.h"
@@ -60,6 +61,16 @@ Stencil<5> UpStencil(bool odd_x, bool odd_y) {
   return s;
 }
 
+// One RGBA pixel as a vector of four floats: each lane does the scalar arithmetic, so the sums
+// are the same bits as channel-by-channel code, four at a time.
+using Float4 = float __attribute__((vector_size(16)));
+inline Float4 LoadPixel(const float* p) {
+  Float4 v;
+  std::memcpy(&v, p, sizeof(v));
+  return v;
+}
+inline void StorePixel(const Float4& v, float* p) { std::memcpy(p, &v, sizeof(v)); }
+
 // The non-zero taps of a stencil as (row offset, column offset, weight).
 struct Tap {
   int dy, dx;
@@ -78,94 +89,161 @@ std::vector<Tap> Taps(const Stencil<N>& s) {
   return taps;
 }
 
-// Weighted sum of source pixels around (base_x, base_y); `inside` says that no tap leaves the
-// image, so the clamps (the edge rule) can be skipped.
-// Weighted sum of source pixels around (base_x, base_y), edges repeating the border pixel.
-void ApplyTapsClamped(const Image& source, const std::vector<Tap>& taps, int base_x, int base_y,
-                      float* out) {
-  float sum[kC] = {0, 0, 0, 0};
-  for (const Tap& tap : taps) {
-    const int y = std::clamp(base_y + tap.dy, 0, source.height - 1);
-    const int x = std::clamp(base_x + tap.dx, 0, source.width - 1);
-    const float* p = source.pixel(x, y);
-    for (int c = 0; c < kC; ++c) sum[c] += tap.weight * p[c];
+// One destination pixel: the taps' weighted sum of the source pixels at column base_x + dx of
+// rows[dy - first] (rows already clamped to the image). Inside the image two partial sums are
+// taken in turn, so that consecutive taps do not wait for each other's addition; near an edge
+// the columns repeat the border pixel and one sum is taken in tap order.
+inline void ApplyTaps(const float* const* rows, const std::vector<Tap>& taps, int first, int base_x,
+                      int width, bool inside, float* out) {
+  if (inside) {
+    Float4 even{0, 0, 0, 0}, odd{0, 0, 0, 0};
+    const size_t count = taps.size();
+    size_t k = 0;
+    for (; k + 1 < count; k += 2) {
+      const Tap& a = taps[k];
+      const Tap& b = taps[k + 1];
+      even += a.weight * LoadPixel(rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
+      odd += b.weight * LoadPixel(rows[b.dy - first] + int64_t{base_x + b.dx} * kC);
+    }
+    if (k < count) {
+      const Tap& a = taps[k];
+      even += a.weight * LoadPixel(rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
+    }
+    StorePixel(even + odd, out);
+    return;
   }
-  for (int c = 0; c < kC; ++c) out[c] = sum[c];
+  Float4 sum{0, 0, 0, 0};
+  for (const Tap& tap : taps) {
+    const int x = std::clamp(base_x + tap.dx, 0, width - 1);
+    sum += tap.weight * LoadPixel(rows[tap.dy - first] + int64_t{x} * kC);
+  }
+  StorePixel(sum, out);
 }
 
-// The same taps away from the edges, as float offsets from the centre pixel in an image of
-// `width` pixels: no clamps and no index arithmetic per tap.
-struct OffsetTap {
-  int64_t offset;
-  float weight;
-};
-std::vector<OffsetTap> Offsets(const std::vector<Tap>& taps, int width) {
-  std::vector<OffsetTap> offsets;
-  for (const Tap& tap : taps) {
-    offsets.push_back({(int64_t{tap.dy} * width + tap.dx) * kC, tap.weight});
-  }
-  return offsets;
-}
-void ApplyOffsets(const float* centre, const std::vector<OffsetTap>& taps, float* out) {
-  // Two partial sums taken in turn, so that consecutive taps do not wait for each other's
-  // addition.
-  float even[kC] = {0, 0, 0, 0}, odd[kC] = {0, 0, 0, 0};
-  const size_t count = taps.size();
-  size_t k = 0;
-  for (; k + 1 < count; k += 2) {
-    const float* a = centre + taps[k].offset;
-    const float* b = centre + taps[k + 1].offset;
-    for (int c = 0; c < kC; ++c) {
-      even[c] += taps[k].weight * a[c];
-      odd[c] += taps[k + 1].weight * b[c];
+// The taps of a stencil resolved against the rows of one destination row, for the pixels whose
+// taps all lie inside the image: tap k reads row_[k] at float offset offset_[k] + base. Sum()
+// adds them in ApplyTaps' order and association (two partial sums in turn), so the bits are
+// the same; N, the number of taps, is fixed so that the loop unrolls.
+template <int N>
+class ResolvedTaps {
+ public:
+  ResolvedTaps(const float* const* rows, const std::vector<Tap>& taps, int first) {
+    if (taps.size() != N) throw ComputeError("dual filter: unexpected number of stencil taps");
+    for (int k = 0; k < N; ++k) {
+      row_[k] = rows[taps[k].dy - first];
+      offset_[k] = int64_t{taps[k].dx} * kC;
+      weight_[k] = taps[k].weight;
     }
   }
-  if (k < count) {
-    const float* a = centre + taps[k].offset;
-    for (int c = 0; c < kC; ++c) even[c] += taps[k].weight * a[c];
+  Float4 Sum(int64_t base) const {
+    Float4 even{0, 0, 0, 0}, odd{0, 0, 0, 0};
+    int k = 0;
+    for (; k + 1 < N; k += 2) {
+      even += weight_[k] * LoadPixel(row_[k] + (offset_[k] + base));
+      odd += weight_[k + 1] * LoadPixel(row_[k + 1] + (offset_[k + 1] + base));
+    }
+    if (k < N) even += weight_[k] * LoadPixel(row_[k] + (offset_[k] + base));
+    return even + odd;
   }
-  for (int c = 0; c < kC; ++c) out[c] = even[c] + odd[c];
+
+ private:
+  std::array<const float*, N> row_;
+  std::array<int64_t, N> offset_;
+  std::array<float, N> weight_;
+};
+
+// Non-zero taps of the stencils (blur.h): the step down's 4x4 are all non-zero, each phase of
+// the step up has 13 of its 5x5.
+constexpr int kDownTaps = 16;
+constexpr int kUpTaps = 13;
+
+const std::vector<Tap>& DownTaps() {
+  static const std::vector<Tap> taps = Taps(DownStencil());
+  return taps;
+}
+
+const std::array<std::vector<Tap>, 4>& UpTaps() {
+  static const std::array<std::vector<Tap>, 4> taps = {
+      Taps(UpStencil(false, false)), Taps(UpStencil(true, false)), Taps(UpStencil(false, true)),
+      Taps(UpStencil(true, true))};
+  return taps;
 }
 
 Image Down(const Image& source) {
-  static const std::vector<Tap> taps = Taps(DownStencil());
-  const std::vector<OffsetTap> offsets = Offsets(taps, source.width);
   Image result((source.width + 1) / 2, (source.height + 1) / 2);
   tbb::parallel_for(0, result.height, [&](int y) {
-    const bool row_inside = 2 * y - 1 >= 0 && 2 * y + 2 < source.height;
-    for (int x = 0; x < result.width; ++x) {
-      if (row_inside && 2 * x - 1 >= 0 && 2 * x + 2 < source.width) {
-        ApplyOffsets(source.pixel(2 * x, 2 * y), offsets, result.pixel(x, y));
-      } else {
-        ApplyTapsClamped(source, taps, 2 * x, 2 * y, result.pixel(x, y));
-      }
+    const float* rows[4];
+    for (int k = 0; k < 4; ++k) {
+      rows[k] = source.pixel(0, std::clamp(2 * y - 1 + k, 0, source.height - 1));
     }
+    DualFilterDownRow(rows, source.width, source.height, y, result.pixel(0, y));
   });
   return result;
 }
 
 Image Up(const Image& source, int width, int height) {
-  static const std::array<std::vector<Tap>, 4> taps = {
-      Taps(UpStencil(false, false)), Taps(UpStencil(true, false)), Taps(UpStencil(false, true)),
-      Taps(UpStencil(true, true))};
-  std::array<std::vector<OffsetTap>, 4> offsets;
-  for (int phase = 0; phase < 4; ++phase) offsets[phase] = Offsets(taps[phase], source.width);
   Image result(width, height);
-  tbb::parallel_for(0, height, [&](int y) {
-    const bool row_inside = y / 2 - 2 >= 0 && y / 2 + 2 < source.height;
-    for (int x = 0; x < width; ++x) {
-      const int phase = (x & 1) + 2 * (y & 1);
-      if (row_inside && x / 2 - 2 >= 0 && x / 2 + 2 < source.width) {
-        ApplyOffsets(source.pixel(x / 2, y / 2), offsets[phase], result.pixel(x, y));
-      } else {
-        ApplyTapsClamped(source, taps[phase], x / 2, y / 2, result.pixel(x, y));
-      }
-    }
-  });
+  tbb::parallel_for(0, height,
+                    [&](int y) { DualFilterUpRow(source, width, y, result.pixel(0, y)); });
   return result;
 }
 
 }  // namespace
+
+void DualFilterDownRow(const float* const rows[4], int source_width, int source_height, int y,
+                       float* out) {
+  const std::vector<Tap>& taps = DownTaps();
+  const int width = (source_width + 1) / 2;
+  // Destination pixels whose taps all lie inside: 2x - 1 >= 0 and 2x + 2 < source_width.
+  const bool row_inside = 2 * y - 1 >= 0 && 2 * y + 2 < source_height;
+  const int inside_begin = row_inside ? std::min(width, 1) : width;
+  const int inside_end = row_inside ? std::max(inside_begin, (source_width - 1) / 2) : width;
+  for (int x = 0; x < inside_begin; ++x) {
+    ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
+  }
+  const ResolvedTaps<kDownTaps> resolved(rows, taps, -1);
+  for (int x = inside_begin; x < inside_end; ++x) {
+    StorePixel(resolved.Sum(int64_t{2 * x} * kC), out + int64_t{x} * kC);
+  }
+  for (int x = inside_end; x < width; ++x) {
+    ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
+  }
+}
+
+void DualFilterUpRow(const Image& source, int width, int y, float* out) {
+  const std::array<std::vector<Tap>, 4>& taps = UpTaps();
+  const int base_y = y / 2;
+  const float* rows[5];
+  for (int k = 0; k < 5; ++k) {
+    rows[k] = source.pixel(0, std::clamp(base_y - 2 + k, 0, source.height - 1));
+  }
+  const std::vector<Tap>& even = taps[2 * (y & 1)];
+  const std::vector<Tap>& odd = taps[1 + 2 * (y & 1)];
+  // Destination pixels whose taps all lie inside: x / 2 - 2 >= 0 and x / 2 + 2 < source.width.
+  const bool row_inside = base_y - 2 >= 0 && base_y + 2 < source.height;
+  const int inside_begin = row_inside ? std::min(width, 4) : width;
+  const int inside_end =
+      row_inside ? std::clamp(2 * (source.width - 2), inside_begin, width) : width;
+  for (int x = 0; x < inside_begin; ++x) {
+    ApplyTaps(rows, (x & 1) ? odd : even, -2, x / 2, source.width, false, out + int64_t{x} * kC);
+  }
+  const ResolvedTaps<kUpTaps> resolved_even(rows, even, -2), resolved_odd(rows, odd, -2);
+  int x = inside_begin;  // even: inside_begin is 4 or width
+  for (; x + 1 < inside_end; x += 2) {
+    const int64_t base = int64_t{x / 2} * kC;
+    StorePixel(resolved_even.Sum(base), out + int64_t{x} * kC);
+    StorePixel(resolved_odd.Sum(base), out + int64_t{x + 1} * kC);
+  }
+  if (x < inside_end) {
+    StorePixel(resolved_even.Sum(int64_t{x / 2} * kC), out + int64_t{x} * kC);
+    ++x;
+  }
+  for (; x < width; ++x) {
+    ApplyTaps(rows, (x & 1) ? odd : even, -2, x / 2, source.width, false, out + int64_t{x} * kC);
+  }
+}
+
+Image DualFilterDown(const Image& source) { return Down(source); }
 
 double DualFilterSigma(int levels) { return std::sqrt(17.0 / 18.0 * (std::pow(4.0, levels) - 1)); }
 
@@ -181,16 +259,21 @@ int DualFilterLevelsForSigma(double sigma) {
   return best;
 }
 
-Image DualFilterBlur(const Image& image, int levels) {
+Image DualFilterFromHalf(Image half, int levels) {
   if (levels < 1) throw UsageError("dual-filter blur: at least one level");
   std::vector<Image> chain;
-  chain.push_back(image);
-  for (int level = 0; level < levels; ++level) chain.push_back(Down(chain.back()));
+  chain.push_back(std::move(half));
+  for (int level = 1; level < levels; ++level) chain.push_back(Down(chain.back()));
   Image result = std::move(chain.back());
-  for (int level = levels - 1; level >= 0; --level) {
+  for (int level = levels - 2; level >= 0; --level) {
     result = Up(result, chain[level].width, chain[level].height);
   }
   return result;
+}
+
+Image DualFilterBlur(const Image& image, int levels) {
+  if (levels < 1) throw UsageError("dual-filter blur: at least one level");
+  return Up(DualFilterFromHalf(Down(image), levels), image.width, image.height);
 }
 
 }  // namespace brdf

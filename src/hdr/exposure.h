@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "hdr/image.h"
 
@@ -22,6 +23,15 @@ struct SceneLuminance {
   double log_average_lit = 0.0;
 };
 SceneLuminance MeasureSceneLuminance(const Image& image, double delta = 1e-4);
+// The same statistics of a width x height image that exists only a row at a time (the fused
+// pipeline measures the exposed and bloomed image without storing it): `row(y, scratch)`
+// returns row y, `width` RGBA pixels, written into `scratch` (room for two such rows) or held
+// elsewhere.
+// Rows are summed in chunks of a fixed number of rows, so the result does not depend on the
+// thread count; MeasureSceneLuminance(image) is this with the image's own rows.
+SceneLuminance MeasureSceneLuminanceByRow(
+    int width, int height, double delta,
+    const std::function<const float*(int y, float* scratch)>& row);
 
 // Multiplies RGB by `exposure` (2^EV for an exposure value EV).
 void ApplyExposure(Image* image, double exposure);

@@ -1,10 +1,13 @@
 // Format detection by signature, and the PNG writer.
 #include "hdr/image_files.h"
 
+#include <tbb/parallel_for.h>
+#include <zlib.h>
+
+#include <algorithm>
 #include <cstring>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
@@ -31,19 +34,106 @@ Image ReadHdrImage(const std::string& path) {
                   "neither an OpenEXR file (magic 76 2f 31 01) nor a Radiance RGBE file ('#?')");
 }
 
-void WritePng(const std::string& path, const Image8& image) {
+namespace {
+
+// PNG (ISO/IEC 15948) written here with zlib, in parallel: every row gets the Sub filter (each
+// byte minus the one a pixel to its left), and strips of kPngStripRows rows are deflated
+// independently, each ending on a byte boundary (Z_SYNC_FLUSH) so that the strips concatenate
+// into one zlib stream; the strips' Adler-32 checksums combine into the stream's. Huffman
+// coding alone (no string matching): on tone-mapped 1080p photographs it measured 25 % faster
+// than OpenCV's setting (level 1, run-length matching) for 0.2 % more bytes, and both beat
+// libpng's adaptive filters (docs/performance.md). The strips are fixed, so the bytes do not
+// depend on the thread count.
+constexpr int kPngStripRows = 64;
+
+void AppendBigEndian(uint32_t value, std::string* out) {
+  for (int shift = 24; shift >= 0; shift -= 8) out->push_back(static_cast<char>(value >> shift));
+}
+
+void AppendChunk(const char type[4], const std::string& data, std::string* out) {
+  AppendBigEndian(static_cast<uint32_t>(data.size()), out);
+  const size_t start = out->size();
+  out->append(type, 4);
+  out->append(data);
+  const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(out->data() + start),
+                          out->size() - start);
+  AppendBigEndian(static_cast<uint32_t>(crc), out);
+}
+
+struct Strip {
+  std::string deflated;
+  uLong adler = 1;
+  uLong length = 0;  // filtered bytes
+};
+
+Strip DeflateStrip(const Image8& image, int y0, int y1, bool last, const std::string& path) {
+  const int64_t row_bytes = int64_t{image.width} * 3;
+  std::string filtered(static_cast<size_t>((row_bytes + 1) * (y1 - y0)), '\0');
+  for (int y = y0; y < y1; ++y) {
+    const uint8_t* in = image.rgb.data() + int64_t{y} * row_bytes;
+    uint8_t* out = reinterpret_cast<uint8_t*>(filtered.data()) + (row_bytes + 1) * (y - y0);
+    out[0] = 1;  // filter type Sub
+    for (int64_t i = 0; i < 3 && i < row_bytes; ++i) out[1 + i] = in[i];
+    for (int64_t i = 3; i < row_bytes; ++i) out[1 + i] = static_cast<uint8_t>(in[i] - in[i - 3]);
+  }
+  Strip strip;
+  strip.length = static_cast<uLong>(filtered.size());
+  strip.adler = adler32(adler32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(filtered.data()),
+                        static_cast<uInt>(filtered.size()));
+  z_stream stream{};
+  if (deflateInit2(&stream, 1, Z_DEFLATED, -15, 8, Z_HUFFMAN_ONLY) != Z_OK) {
+    throw OutputError(path, "PNG encoding failed: zlib cannot start");
+  }
+  strip.deflated.resize(deflateBound(&stream, strip.length) + 16);
+  stream.next_in = reinterpret_cast<Bytef*>(filtered.data());
+  stream.avail_in = strip.length;
+  stream.next_out = reinterpret_cast<Bytef*>(strip.deflated.data());
+  stream.avail_out = static_cast<uInt>(strip.deflated.size());
+  const int status = deflate(&stream, last ? Z_FINISH : Z_SYNC_FLUSH);
+  const bool done = last ? status == Z_STREAM_END : status == Z_OK && stream.avail_in == 0;
+  strip.deflated.resize(strip.deflated.size() - stream.avail_out);
+  deflateEnd(&stream);
+  if (!done) throw OutputError(path, "PNG encoding failed: zlib did not finish a strip");
+  return strip;
+}
+
+}  // namespace
+
+std::string EncodePng(const Image8& image, const std::string& path) {
   CheckImageSize(image.width, image.height, path);
-  // OpenCV stores colour as BGR.
-  const cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<uint8_t*>(image.rgb.data()));
-  cv::Mat bgr;
-  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", bgr, bytes)) throw OutputError(path, "PNG encoding failed");
+  if (image.rgb.size() != static_cast<size_t>(image.width) * image.height * 3) {
+    throw OutputError(path, "PNG encoding failed: pixel buffer does not match the image size");
+  }
+  const int strips = (image.height + kPngStripRows - 1) / kPngStripRows;
+  std::vector<Strip> parts(strips);
+  tbb::parallel_for(0, strips, [&](int k) {
+    parts[k] = DeflateStrip(image, k * kPngStripRows,
+                            std::min(image.height, (k + 1) * kPngStripRows), k == strips - 1, path);
+  });
+  std::string header;
+  AppendBigEndian(static_cast<uint32_t>(image.width), &header);
+  AppendBigEndian(static_cast<uint32_t>(image.height), &header);
+  header += std::string("\x08\x02\x00\x00\x00", 5);  // 8 bits, RGB, deflate, filters, no interlace
+  std::string data = "\x78\x01";                     // zlib header: deflate, 32 KiB window, fastest
+  uLong adler = 1;
+  for (const Strip& part : parts) {
+    data += part.deflated;
+    adler = adler32_combine(adler, part.adler, static_cast<z_off_t>(part.length));
+  }
+  AppendBigEndian(static_cast<uint32_t>(adler), &data);
+  std::string png("\x89PNG\r\n\x1a\n", 8);
+  AppendChunk("IHDR", header, &png);
+  AppendChunk("IDAT", data, &png);
+  AppendChunk("IEND", "", &png);
+  return png;
+}
+
+void WritePng(const std::string& path, const Image8& image) {
+  const std::string png = EncodePng(image, path);
   WriteFileAtomically(
       path,
       [&](std::ostream& stream) {
-        stream.write(reinterpret_cast<const char*>(bytes.data()),
-                     static_cast<std::streamsize>(bytes.size()));
+        stream.write(png.data(), static_cast<std::streamsize>(png.size()));
       },
       /*binary=*/true);
 }

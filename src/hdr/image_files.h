@@ -1,7 +1,7 @@
 // Image files of the HDR pipeline (DESIGN §8): OpenEXR (read, write half or float), Radiance
-// RGBE `.hdr` (read, by brdfkit's own decoder) and 8-bit PNG (write, through OpenCV). Readers throw
-// InputError naming the file (and the byte where a signature is wrong); writers are atomic
-// (temporary file, then rename) and throw OutputError naming the target.
+// RGBE `.hdr` (read, by brdfkit's own decoder) and 8-bit PNG (write, by brdfkit's own parallel
+// encoder over zlib). Readers throw InputError naming the file (and the byte where a signature is
+// wrong); writers are atomic (temporary file, then rename) and throw OutputError naming the target.
 #pragma once
 
 #include <cstdint>
@@ -41,6 +41,9 @@ struct Image8 {
   int height = 0;
   std::vector<uint8_t> rgb;
 };
+// The PNG file's bytes (8-bit RGB; `path` only names the target in errors), and the atomic
+// write of them. Strips of rows are compressed in parallel (image_files.cpp).
+std::string EncodePng(const Image8& image, const std::string& path);
 void WritePng(const std::string& path, const Image8& image);
 
 }  // namespace brdf

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <vector>
 
 #include "core/errors.h"
 #include "hdr/bloom.h"
@@ -92,7 +94,72 @@ Image8 EncodeDisplay(const Image& image, const TransferCurve& transfer) {
   return display;
 }
 
-ToneResult RunTonePipeline(Image image, const ToneOptions& options) {
+namespace {
+
+// Rows per task of the last pass.
+constexpr int kRowsPerTask = 8;
+
+// The exposed and bloomed image, row by row, never stored whole: row y is
+// exposure * input (+ strength * bloom), the arithmetic of ApplyExposure and AddBloom. The
+// bloom is either full size or (dual filtering) at half size, its last doubling step taken
+// here, per row.
+class ExposedRows {
+ public:
+  ExposedRows(const Image& image, double exposure, const Image* bloom, bool bloom_is_half,
+              double strength)
+      : image_(image),
+        scale_(static_cast<float>(exposure)),
+        bloom_(bloom),
+        bloom_is_half_(bloom_is_half),
+        strength_(static_cast<float>(strength)) {}
+
+  // Row y into `scratch` (width * 4 floats); `bloom_scratch` has as much room again.
+  const float* Row(int y, float* scratch, float* bloom_scratch) const {
+    const int64_t floats = int64_t{image_.width} * Image::kChannels;
+    const float* in = image_.pixel(0, y);
+    // Locals, not members, in the loops: a store to a float row may alias a float member.
+    const float scale = scale_, strength = strength_;
+    if (bloom_ == nullptr) {
+      for (int64_t i = 0; i < floats; i += Image::kChannels) {
+        scratch[i] = in[i] * scale;
+        scratch[i + 1] = in[i + 1] * scale;
+        scratch[i + 2] = in[i + 2] * scale;
+        scratch[i + 3] = in[i + 3];
+      }
+      return scratch;
+    }
+    const float* add = bloom_is_half_ ? bloom_scratch : bloom_->pixel(0, y);
+    if (bloom_is_half_) DualFilterUpRow(*bloom_, image_.width, y, bloom_scratch);
+    for (int64_t i = 0; i < floats; i += Image::kChannels) {
+      scratch[i] = in[i] * scale + strength * add[i];
+      scratch[i + 1] = in[i + 1] * scale + strength * add[i + 1];
+      scratch[i + 2] = in[i + 2] * scale + strength * add[i + 2];
+      scratch[i + 3] = in[i + 3];
+    }
+    return scratch;
+  }
+
+ private:
+  const Image& image_;
+  float scale_;
+  const Image* bloom_;
+  bool bloom_is_half_;
+  float strength_;
+};
+
+}  // namespace
+
+// The stages of pipeline.h fused into as few passes over the full-size image as the data
+// allow, with the stages' own per-pixel arithmetic, so the bytes are those of running the
+// stages one after another (tests/hdr_tone_test.cpp checks it):
+//   1. scene statistics of the input (the automatic exposure needs them first);
+//   2. with bloom: exposure, bright pass and the first step down read the input once
+//      (dual filtering; the other blurs run on a full-size bright image); the rest of the
+//      blur runs at half size;
+//   3. Reinhard only: statistics of the exposed and bloomed image, made a row at a time
+//      (the last doubling step of the bloom included) and not stored;
+//   4. the same rows again, tone mapped, encoded and rounded to 8 bits.
+ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   options.Validate();
   ToneResult result;
   result.scene = MeasureSceneLuminance(image, options.delta);
@@ -101,24 +168,67 @@ ToneResult RunTonePipeline(Image image, const ToneOptions& options) {
     const std::string warning = BlackPixelWarning(result.scene);
     if (!warning.empty()) result.warnings.push_back(warning);
   }
-  ApplyExposure(&image, result.exposure);
 
-  if (options.bloom != BlurKind::kNone && options.bloom_strength > 0.0) {
-    const Image bloom =
-        Blur(BrightPass(image, options.bloom_threshold), options.bloom, options.bloom_sigma);
-    AddBloom(&image, bloom, options.bloom_strength);
+  Image bloom;
+  bool bloom_is_half = false;
+  const bool blooming = options.bloom != BlurKind::kNone && options.bloom_strength > 0.0;
+  if (blooming) {
+    if (options.bloom == BlurKind::kDual) {
+      bloom = DualFilterFromHalf(BrightPassDown(image, options.bloom_threshold, result.exposure),
+                                 DualFilterLevelsForSigma(options.bloom_sigma));
+      bloom_is_half = true;
+    } else {
+      bloom = Blur(BrightPass(image, options.bloom_threshold, result.exposure), options.bloom,
+                   options.bloom_sigma);
+    }
     result.bloom_sigma = DesignedSigma(options.bloom, options.bloom_sigma);
   }
+  const ExposedRows rows(image, result.exposure, blooming ? &bloom : nullptr, bloom_is_half,
+                         options.bloom_strength);
+  const int width = image.width;
+  const int64_t row_floats = int64_t{width} * Image::kChannels;
 
   // Reinhard's key scaling needs the statistics of what is being mapped (after exposure and
   // bloom); the other operators need none.
   const bool reinhard = options.tone_operator == ToneOperator::kReinhard ||
                         options.tone_operator == ToneOperator::kReinhardExtended;
-  const SceneLuminance mapped =
-      reinhard ? MeasureSceneLuminance(image, options.delta) : SceneLuminance{};
+  SceneLuminance mapped;
+  // With dual-filter bloom a row costs its doubling step (13 taps a pixel): the statistics
+  // pass keeps the rows it makes for the last pass, which then reads them instead (one write
+  // and one read of the frame cost less than the taps again).
+  std::unique_ptr<float[]> kept;
+  if (reinhard) {
+    if (bloom_is_half) kept.reset(new float[image.pixel_count() * Image::kChannels]);
+    mapped =
+        MeasureSceneLuminanceByRow(width, image.height, options.delta, [&](int y, float* scratch) {
+          float* target = kept ? kept.get() + y * row_floats : scratch;
+          return rows.Row(y, target, scratch + row_floats);
+        });
+  }
   result.mapping = PlanToneMapping(options.tone_operator, mapped, options.key, options.white);
-  ApplyToneMapping(&image, result.mapping);
-  result.display = EncodeDisplay(image, options.transfer);
+
+  const Quantizer8 quantize(options.transfer);
+  Image8& display = result.display;
+  display.width = width;
+  display.height = image.height;
+  display.rgb.resize(image.pixel_count() * 3);
+  const int tasks = (image.height + kRowsPerTask - 1) / kRowsPerTask;
+  ForToneOperator(result.mapping, [&](const auto& map) {
+    tbb::parallel_for(0, tasks, [&](int task) {
+      std::vector<float> scratch(2 * row_floats);
+      std::vector<float> mapped(int64_t{width} * 3);  // one row tone mapped, RGB
+      const int y1 = std::min(image.height, (task + 1) * kRowsPerTask);
+      for (int y = task * kRowsPerTask; y < y1; ++y) {
+        const float* row = kept ? kept.get() + y * row_floats
+                                : rows.Row(y, scratch.data(), scratch.data() + row_floats);
+        uint8_t* out = display.rgb.data() + int64_t{y} * width * 3;
+        for (int x = 0; x < width; ++x) {
+          map(row + int64_t{x} * Image::kChannels, mapped.data() + 3 * x);
+        }
+        quantize.EncodeMany(mapped.data(), int64_t{width} * 3, out);
+      }
+    });
+  });
   return result;
 }
 

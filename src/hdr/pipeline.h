@@ -47,7 +47,9 @@ struct ToneResult {
   std::string Summary() const;
 };
 
-ToneResult RunTonePipeline(Image image, const ToneOptions& options);
+// Equal, byte for byte, to running the stages one after another on a copy of `image`; fused
+// into fewer passes over it (pipeline.cpp says which).
+ToneResult RunTonePipeline(const Image& image, const ToneOptions& options);
 
 // The last stage alone: transfer curve and 8-bit rounding of RGB in [0, 1].
 Image8 EncodeDisplay(const Image& image, const TransferCurve& transfer);

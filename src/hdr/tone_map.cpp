@@ -49,37 +49,15 @@ ToneMapping PlanToneMapping(ToneOperator tone_operator, const SceneLuminance& sc
 }
 
 void ApplyToneMapping(Image* image, const ToneMapping& mapping) {
-  const float key_scale = static_cast<float>(mapping.key_scale);
-  const float white = static_cast<float>(mapping.white);
-  const ToneOperator op = mapping.tone_operator;
-  tbb::parallel_for(tbb::blocked_range<int64_t>(0, image->pixel_count()),
-                    [&](const tbb::blocked_range<int64_t>& range) {
-                      for (int64_t i = range.begin(); i < range.end(); ++i) {
-                        float* rgba = image->rgba.data() + i * Image::kChannels;
-                        const float world = PixelLuminance(rgba);
-                        float ratio = 0.0f;  // L_d / L_w; black (or negative) luminance stays black
-                        if (world > 0.0f) {
-                          const float scaled = key_scale * world;
-                          float display = world;
-                          switch (op) {
-                            case ToneOperator::kExposure:
-                              display = ExponentialMap(world, 1.0f);
-                              break;
-                            case ToneOperator::kReinhard:
-                              display = ReinhardMap(scaled);
-                              break;
-                            case ToneOperator::kReinhardExtended:
-                              display = ReinhardExtendedMap(scaled, white);
-                              break;
-                            case ToneOperator::kNone:
-                              break;
-                          }
-                          ratio = display / world;
+  ForToneOperator(mapping, [&](const auto& map) {
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, image->pixel_count()),
+                      [&](const tbb::blocked_range<int64_t>& range) {
+                        for (int64_t i = range.begin(); i < range.end(); ++i) {
+                          float* rgba = image->rgba.data() + i * Image::kChannels;
+                          map(rgba, rgba);
                         }
-                        for (int c = 0; c < 3; ++c)
-                          rgba[c] = std::clamp(rgba[c] * ratio, 0.0f, 1.0f);
-                      }
-                    });
+                      });
+  });
 }
 
 }  // namespace brdf

@@ -14,6 +14,7 @@
 //   none               L_d = L_w (clipped).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -51,6 +52,53 @@ struct ToneMapping {
 // Chooses the key scale and L_white. `white` <= 0 means the scene maximum.
 ToneMapping PlanToneMapping(ToneOperator tone_operator, const SceneLuminance& scene, double key,
                             double white);
+// One pixel's mapping in float, as ApplyToneMapping does it (the fused pipeline maps pixels it
+// never stores through the same arithmetic). The operator is a template argument so that the
+// per-pixel loop carries no switch; ForToneOperator() picks the instance.
+template <ToneOperator kOperator>
+class PixelToneMap {
+ public:
+  explicit PixelToneMap(const ToneMapping& mapping)
+      : key_scale_(static_cast<float>(mapping.key_scale)),
+        white_(static_cast<float>(mapping.white)) {}
+  // RGB of `in` mapped and clipped to [0, 1] into out[0..2]; `in` may be `out`.
+  void operator()(const float* in, float* out) const {
+    const float world = PixelLuminance(in);
+    float ratio = 0.0f;  // L_d / L_w; black (or negative) luminance stays black
+    if (world > 0.0f) {
+      float display = world;
+      if constexpr (kOperator == ToneOperator::kExposure) {
+        display = ExponentialMap(world, 1.0f);
+      } else if constexpr (kOperator == ToneOperator::kReinhard) {
+        display = ReinhardMap(key_scale_ * world);
+      } else if constexpr (kOperator == ToneOperator::kReinhardExtended) {
+        display = ReinhardExtendedMap(key_scale_ * world, white_);
+      }
+      ratio = display / world;
+    }
+    for (int c = 0; c < 3; ++c) out[c] = std::clamp(in[c] * ratio, 0.0f, 1.0f);
+  }
+
+ private:
+  float key_scale_;
+  float white_;
+};
+
+// Calls visit(PixelToneMap<op>(mapping)) for the mapping's operator.
+template <typename Visit>
+void ForToneOperator(const ToneMapping& mapping, Visit&& visit) {
+  switch (mapping.tone_operator) {
+    case ToneOperator::kExposure:
+      return visit(PixelToneMap<ToneOperator::kExposure>(mapping));
+    case ToneOperator::kReinhard:
+      return visit(PixelToneMap<ToneOperator::kReinhard>(mapping));
+    case ToneOperator::kReinhardExtended:
+      return visit(PixelToneMap<ToneOperator::kReinhardExtended>(mapping));
+    case ToneOperator::kNone:
+      return visit(PixelToneMap<ToneOperator::kNone>(mapping));
+  }
+}
+
 // Maps every pixel in place; RGB ends in [0, 1]; alpha is kept.
 void ApplyToneMapping(Image* image, const ToneMapping& mapping);
 

@@ -49,6 +49,13 @@ double TransferCurve::Decode(double encoded) const {
   return kind == Kind::kSrgb ? SrgbDecode(encoded) : std::pow(encoded, gamma);
 }
 
+void Quantizer8::EncodeMany(const float* linear, int64_t count, uint8_t* out) const {
+  const Bucket* const buckets = buckets_.data();
+  const float* const thresholds = thresholds_.data();
+  const int extra_steps = max_codes_per_bucket_ - 1;
+  for (int64_t i = 0; i < count; ++i) out[i] = Encode(linear[i], buckets, thresholds, extra_steps);
+}
+
 Quantizer8::Quantizer8(const TransferCurve& curve) {
   for (int k = 0; k < 255; ++k) {
     thresholds_[k] = static_cast<float>(curve.Decode((k + 0.5) / 255.0));
@@ -66,7 +73,8 @@ Quantizer8::Quantizer8(const TransferCurve& curve) {
     float first, last;
     std::memcpy(&first, &first_bits, sizeof(first));
     std::memcpy(&last, &last_bits, sizeof(last));
-    bucket_start_[bucket] = static_cast<uint8_t>(codes_below(first));
+    const int start = codes_below(first);
+    buckets_[bucket] = {thresholds_[start], static_cast<uint8_t>(start)};
     max_codes_per_bucket_ =
         std::max(max_codes_per_bucket_, codes_below(std::min(last, 1.0f)) - codes_below(first));
   }

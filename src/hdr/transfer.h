@@ -34,23 +34,44 @@ class Quantizer8 {
  public:
   explicit Quantizer8(const TransferCurve& curve);
   uint8_t operator()(float linear) const {
-    if (!(linear > 0.0f)) return 0;  // also NaN
-    if (linear >= 1.0f) return 255;
-    uint32_t bits;
-    std::memcpy(&bits, &linear, sizeof(bits));
-    int code = bucket_start_[bits >> kBucketShift];
-    // A fixed number of steps without branches (a data-dependent loop exit mispredicts).
-    for (int step = 0; step < max_codes_per_bucket_; ++step) code += linear >= thresholds_[code];
-    return static_cast<uint8_t>(code);
+    return Encode(linear, buckets_.data(), thresholds_.data(), max_codes_per_bucket_ - 1);
   }
+  // `count` values at once, as operator() one by one: the table and the step count are read
+  // into locals once (a byte store may alias anything, so a per-value call reloads them).
+  void EncodeMany(const float* linear, int64_t count, uint8_t* out) const;
 
  private:
+  struct Bucket;
+  // The rounding itself, given the tables; `extra_steps` more comparisons after the bucket's
+  // first, a fixed number without branches (a data-dependent loop exit mispredicts): none for
+  // the sRGB curve and gammas near it, where no bucket holds more than one code change.
+  static uint8_t Encode(float linear, const Bucket* buckets, const float* thresholds,
+                        int extra_steps);
+
   static constexpr int kBucketShift = 16;  // keeps sign, exponent and 7 mantissa bits
   static constexpr int kBuckets = (0x3f800000 >> kBucketShift) + 1;  // floats in [0, 1]
   // Code k + 1 starts at thresholds_[k]; thresholds_[255] = infinity stops the count at 255.
   std::array<float, 256> thresholds_;
-  std::array<uint8_t, kBuckets> bucket_start_;
+  // The code at the start of a bucket and the threshold of the next one, side by side: one
+  // load finds both.
+  struct Bucket {
+    float next;
+    uint8_t start;
+  };
+  std::array<Bucket, kBuckets> buckets_;
   int max_codes_per_bucket_ = 0;  // most code changes inside one bucket
 };
+
+inline uint8_t Quantizer8::Encode(float linear, const Bucket* buckets, const float* thresholds,
+                                  int extra_steps) {
+  if (!(linear > 0.0f)) return 0;  // also NaN
+  if (linear >= 1.0f) return 255;
+  uint32_t bits;
+  std::memcpy(&bits, &linear, sizeof(bits));
+  const Bucket& bucket = buckets[bits >> kBucketShift];
+  int code = bucket.start + (linear >= bucket.next);
+  for (int step = 0; step < extra_steps; ++step) code += linear >= thresholds[code];
+  return static_cast<uint8_t>(code);
+}
 
 }  // namespace brdf
