@@ -2,13 +2,10 @@
 
 #include <cmath>
 #include <iomanip>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
-#include <vector>
 
-#include "core/atomic_file.h"
-#include "core/errors.h"
+#include "hdr/image_files.h"
 
 namespace brdf::cli::chart {
 
@@ -37,19 +34,22 @@ std::string Shorten(const std::string& text, size_t max_chars) {
 }
 
 void WritePng(const cv::Mat& image, const std::string& path) {
-  std::vector<uchar> png;
-  try {
-    if (!cv::imencode(".png", image, png)) throw OutputError(path, "PNG encoding failed");
-  } catch (const cv::Exception& error) {
-    throw OutputError(path, std::string("PNG encoding failed: ") + error.what());
+  // Through the HDR library's PNG encoder, not OpenCV's: one encoder for every PNG brdf writes,
+  // and no image-codec libraries to load at start-up.
+  Image8 rgb;
+  rgb.width = image.cols;
+  rgb.height = image.rows;
+  rgb.rgb.resize(size_t(image.cols) * image.rows * 3);
+  for (int y = 0; y < image.rows; ++y) {
+    const cv::Vec3b* row = image.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < image.cols; ++x) {
+      uint8_t* pixel = &rgb.rgb[(size_t(y) * image.cols + x) * 3];
+      pixel[0] = row[x][2];  // OpenCV stores BGR
+      pixel[1] = row[x][1];
+      pixel[2] = row[x][0];
+    }
   }
-  WriteFileAtomically(
-      path,
-      [&](std::ostream& out) {
-        out.write(reinterpret_cast<const char*>(png.data()),
-                  static_cast<std::streamsize>(png.size()));
-      },
-      /*binary=*/true);
+  brdf::WritePng(path, rgb);
 }
 
 }  // namespace brdf::cli::chart

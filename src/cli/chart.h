@@ -27,8 +27,8 @@ std::string TickLabel(double value);
 void Label(cv::Mat* image, const std::string& text, cv::Point origin, double scale = 0.5);
 // Cuts `text` to `max_chars` with an ellipsis (titles built from file names can be long).
 std::string Shorten(const std::string& text, size_t max_chars);
-// Encodes the image as PNG in memory, then writes it atomically. Throws OutputError naming the
-// path when the encoding or the write fails.
+// Writes the (BGR, 8-bit) image as a PNG atomically. Throws OutputError naming the path when
+// the encoding or the write fails.
 void WritePng(const cv::Mat& image, const std::string& path);
 
 }  // namespace brdf::cli::chart
