@@ -25,16 +25,19 @@ using testing::RunBrdf;
 using testing::RunCommand;
 using testing::ScratchDir;
 
+// mpirun, quoted for the shell ("" in a build without MPI, whose tests skip).
+std::string Mpirun() {
+#ifdef BRDFKIT_MPIEXEC
+  return std::string("'") + BRDFKIT_MPIEXEC + "' --oversubscribe --allow-run-as-root";
+#else
+  return "";
+#endif
+}
+
 // `brdf ARGUMENTS` under mpirun with `ranks` processes (as root too, on one core or two).
 CommandResult RunUnderMpi(int ranks, const std::string& arguments) {
-#ifdef BRDFKIT_MPIEXEC
-  return RunCommand(std::string("'") + BRDFKIT_MPIEXEC + "' -n " + std::to_string(ranks) +
-                    " --oversubscribe --allow-run-as-root '" + BRDFKIT_BINARY + "' " + arguments);
-#else
-  (void)ranks;
-  (void)arguments;
-  return {};
-#endif
+  return RunCommand(Mpirun() + " -n " + std::to_string(ranks) + " '" + BRDFKIT_BINARY + "' " +
+                    arguments);
 }
 
 #ifdef BRDFKIT_MPIEXEC
@@ -104,9 +107,8 @@ TEST(Mpi, RankWithBadInputFailsTheMeasurementCleanly) {
   const std::string common = " measure --quiet --schedule inplane:step=30 --out " + out;
   // OpenMPI's MPMD form: rank 0 runs the first command line, rank 1 the second.
   const CommandResult result = RunCommand(
-      std::string("'") + BRDFKIT_MPIEXEC + "' --oversubscribe --allow-run-as-root -n 1 '" +
-      BRDFKIT_BINARY + "'" + common + " --sample surface:" + good + " : -n 1 '" + BRDFKIT_BINARY +
-      "'" + common + " --sample surface:" + bad);
+      Mpirun() + " -n 1 '" + BRDFKIT_BINARY + "'" + common + " --sample surface:" + good +
+      " : -n 1 '" + BRDFKIT_BINARY + "'" + common + " --sample surface:" + bad);
   EXPECT_EQ(result.exit_status, 2) << result.err;
   EXPECT_NE(result.err.find("rank 1: " + bad), std::string::npos) << result.err;
   EXPECT_NE(result.err.find("heightfield.kind"), std::string::npos) << result.err;

@@ -153,9 +153,18 @@ std::vector<size_t> ItemsOf(const WorkPlan& plan, int rank) {
 }
 
 #ifdef BRDFKIT_HAVE_MPI
+// Sends and waits for the send to complete, sleeping rather than spinning (see WaitForMessage):
+// a large result waits for rank 0, which looks for messages every few milliseconds.
 void Send(int destination, Tag tag, const std::string& bytes) {
-  MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, destination, tag,
-           MPI_COMM_WORLD);
+  MPI_Request request;
+  MPI_Isend(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, destination, tag,
+            MPI_COMM_WORLD, &request);
+  int complete = 0;
+  while (true) {
+    MPI_Test(&request, &complete, MPI_STATUS_IGNORE);
+    if (complete) return;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
 }
 
 // Receives the message `status` announced (from MPI_Probe or MPI_Iprobe).
@@ -166,6 +175,19 @@ std::string Receive(const MPI_Status& status) {
   MPI_Recv(bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD,
            MPI_STATUS_IGNORE);
   return bytes;
+}
+
+// Waits for the next message from `source` without spinning: OpenMPI's blocking probe polls
+// a core at full speed, which on a node shared with the working threads (or an oversubscribed
+// one) takes their time. A millisecond's sleep between looks costs nothing by comparison.
+MPI_Status WaitForMessage(int source) {
+  MPI_Status status;
+  int flag = 0;
+  while (true) {
+    MPI_Iprobe(source, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
+    if (flag) return status;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 // A status and a message in one buffer: 4 bytes of status, then the text.
@@ -239,8 +261,7 @@ void RunWorker(const WorkPlan& plan, const std::function<void()>& prepare,
     Send(0, kDone, "");
   }
   while (true) {
-    MPI_Status probe;
-    MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &probe);
+    const MPI_Status probe = WaitForMessage(0);
     const std::string bytes = Receive(probe);
     if (probe.MPI_TAG != kOutcome) continue;  // a stop that crossed our report
     std::string message;
@@ -340,14 +361,13 @@ void RunRoot(const WorkPlan& plan, const std::function<void()>& prepare,
 #ifdef BRDFKIT_HAVE_MPI
     while (remaining > 0) {
       MPI_Status status;
-      int flag = 0;
       if (local_finished) {
-        MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
-        flag = 1;
+        status = WaitForMessage(MPI_ANY_SOURCE);
       } else {
+        int flag = 0;
         MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
+        if (!flag) break;
       }
-      if (!flag) break;
       handle(status);
     }
 #endif
