@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <string>
@@ -223,6 +224,37 @@ TEST(Mpi, BatchWithABadFileReportsItAndExitsTwo) {
   const std::string table = ReadFileText(out + "/table.csv");
   EXPECT_NE(table.find("broken.csv,,error,"), std::string::npos) << table;
   EXPECT_NE(table.find("cayman.json,ok,lambert,true"), std::string::npos) << table;
+}
+
+// Without mpirun: two inputs sharing a stem get their extension in the report name, the JSON
+// table is typed, and a missing file is a row of its own and exit status 2.
+TEST(BatchCli, NamesReportsByFileAndKeepsGoingPastABadFile) {
+  ScratchDir dir;
+  const std::string out = dir.File("out");
+  const CommandResult result =
+      RunBrdf("batch '" + DataPath("cornell-astm/cayman.astm") + "' '" +
+              DataPath("cornell-pbrt-v2/cayman.brdf") + "' '" + dir.File("missing.astm") +
+              "' --model lambert --quiet --json --out '" + out + "'");
+  EXPECT_EQ(result.exit_status, 2) << result.err;
+  EXPECT_NE(result.err.find(dir.File("missing.astm")), std::string::npos) << result.err;
+  const nlohmann::json table = nlohmann::json::parse(result.out);
+  ASSERT_EQ(table.size(), 3u);
+  EXPECT_EQ(table[0]["report"], "cayman.astm.json");
+  EXPECT_EQ(table[1]["report"], "cayman.brdf.json");
+  EXPECT_EQ(table[2]["status"], "error");
+  // The ASTM file and its pbrt-v2 copy hold the same numbers: the same fit.
+  EXPECT_TRUE(table[0]["converged"].get<bool>());
+  EXPECT_EQ(table[0]["params"], table[1]["params"]);
+  EXPECT_GT(table[0]["samples"].get<int>(), 1000);
+  const nlohmann::json report = nlohmann::json::parse(ReadFileText(out + "/cayman.astm.json"));
+  EXPECT_EQ(report["model_string"], table[0]["params"]);
+  EXPECT_EQ(ReadFileText(out + "/missing.json"), "");
+  // Two inputs with the same name in different directories cannot both be reported.
+  const CommandResult clash =
+      RunBrdf("batch '" + DataPath("cornell-astm/cayman.astm") + "' '" +
+              DataPath("cornell-astm/cayman.astm") + "' --out '" + dir.File("clash") + "'");
+  EXPECT_EQ(clash.exit_status, 2);
+  EXPECT_NE(clash.err.find("would both write cayman.astm.json"), std::string::npos) << clash.err;
 }
 
 // The layer on one rank: every item computed once and collected once, on the calling thread;

@@ -124,40 +124,39 @@ std::string FitOneFile(const BatchOptions& options, const fitters::FitOptions& f
   return result.dump();
 }
 
-// The table row of one file's result.
-std::vector<std::string> TableRow(const std::string& file, const std::string& report_name,
-                                  const nlohmann::json& result) {
-  std::vector<std::string> row(TableColumns().size());
+// The table row of one file's result, typed (numbers, booleans, text; null where empty).
+std::vector<nlohmann::json> TableRow(const std::string& file, const std::string& report_name,
+                                     const nlohmann::json& result) {
+  std::vector<nlohmann::json> row(TableColumns().size());
   row[0] = file;
   if (result.contains("error")) {
     row[2] = "error";
-    row[16] = result["error"].get<std::string>();
+    row[16] = result["error"];
     return row;
   }
   const nlohmann::json& report = result["report"];
-  const bool converged = report["converged"].get<bool>();
   row[1] = report_name;
-  row[2] = converged ? "ok" : "not-converged";
-  row[3] = JsonField(report["model"]);
-  row[4] = JsonField(report["converged"]);
-  row[5] = JsonField(report["model_string"]);
-  row[6] = JsonField(report["metrics"]["rmse"]);
-  row[7] = JsonField(report["metrics"]["log_rmse"]);
-  row[8] = JsonField(report["metrics"]["cosine_l2"]);
-  for (int c = 0; c < 3; ++c) row[9 + c] = JsonField(report["energy"]["max_albedo"][c]);
-  row[12] = JsonField(report["energy"]["conserving"]);
-  row[13] = JsonField(report["samples"]);
-  row[14] = JsonField(report["iterations"]);
-  row[15] = JsonField(report["time_s"]);
+  row[2] = report["converged"].get<bool>() ? "ok" : "not-converged";
+  row[3] = report["model"];
+  row[4] = report["converged"];
+  row[5] = report["model_string"];
+  row[6] = report["metrics"]["rmse"];
+  row[7] = report["metrics"]["log_rmse"];
+  row[8] = report["metrics"]["cosine_l2"];
+  for (int c = 0; c < 3; ++c) row[9 + c] = report["energy"]["max_albedo"][c];
+  row[12] = report["energy"]["conserving"];
+  row[13] = report["samples"];
+  row[14] = report["iterations"];
+  row[15] = report["time_s"];
   return row;
 }
 
-void WriteTable(std::ostream& out, const std::vector<std::vector<std::string>>& rows) {
+void WriteTable(std::ostream& out, const std::vector<std::vector<nlohmann::json>>& rows) {
   const std::vector<std::string>& columns = TableColumns();
   for (size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << columns[c];
   out << "\n";
-  for (const std::vector<std::string>& row : rows) {
-    for (size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << CsvField(row[c]);
+  for (const std::vector<nlohmann::json>& row : rows) {
+    for (size_t c = 0; c < row.size(); ++c) out << (c ? "," : "") << CsvField(JsonField(row[c]));
     out << "\n";
   }
 }
@@ -206,7 +205,8 @@ Command AddBatchCommand(CLI::App& parent) {
   app->add_option("--out", options->out,
                   "directory for the reports (<name>.json, as brdf fit --out writes) and "
                   "table.csv; created if missing. Without it nothing is written");
-  app->add_flag("--json", options->json, "print the table as JSON instead of CSV");
+  app->add_flag("--json", options->json,
+                "print the table as JSON (an array of rows keyed by column) instead of CSV");
   app->add_flag("--quiet", options->quiet, "no progress bar on stderr");
   app->footer(
       "table.csv columns: file, report, status (ok, not-converged or error), model, converged, "
@@ -254,7 +254,7 @@ Command AddBatchCommand(CLI::App& parent) {
               const auto size = fs::file_size(file, error);
               costs.push_back(error ? 0.0 : static_cast<double>(size));
             }
-            std::vector<std::vector<std::string>> rows(options->files.size());
+            std::vector<std::vector<nlohmann::json>> rows(options->files.size());
             int worst = 0, failed = 0;
             Progress progress("fitting", static_cast<int64_t>(options->files.size()),
                               options->quiet || !ranks::IsRoot());
@@ -292,9 +292,9 @@ Command AddBatchCommand(CLI::App& parent) {
                                   [&](std::ostream& out) { WriteTable(out, rows); });
             }
             if (options->json) {
-              nlohmann::json table = nlohmann::json::array();
-              for (const std::vector<std::string>& row : rows) {
-                nlohmann::json entry;
+              nlohmann::ordered_json table = nlohmann::ordered_json::array();
+              for (const std::vector<nlohmann::json>& row : rows) {
+                nlohmann::ordered_json entry;
                 for (size_t c = 0; c < row.size(); ++c) entry[TableColumns()[c]] = row[c];
                 table.push_back(entry);
               }
