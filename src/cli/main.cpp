@@ -63,6 +63,10 @@ int main(int argc, char** argv) {
   try {
     for (const brdf::cli::Command& command : commands) {
       if (!command.app->parsed()) continue;
+      if (brdf::ranks::LaunchedByMpi() && !brdf::ranks::BuiltWithMpi()) {
+        std::cerr << "brdf: warning: started by mpirun, but this build has no MPI "
+                     "(BRDFKIT_MPI=OFF): every process runs the whole job on its own\n";
+      }
       if (brdf::ranks::Size() > 1 && !command.distributed) {
         throw brdf::UsageError("'" + command.app->get_name() +
                                "' runs on one process; under mpirun only measure and batch split "
