@@ -116,6 +116,31 @@ TEST(Mpi, RankWithBadInputFailsTheMeasurementCleanly) {
   EXPECT_EQ(dir.CountEntries(), 2) << "an output (or a temporary) was left behind";
 }
 
+// A computation that fails on one rank while the others work (rank 1's detector is so noisy
+// that its reference reading averages below zero for seed 2, caught when its first incidence
+// is calibrated): exit status 3 for everyone, the rank named once, no output.
+TEST(Mpi, RankWhoseComputationFailsStopsTheJob) {
+  SKIP_WITHOUT_MPI();
+  ScratchDir dir;
+  const std::string noisy =
+      dir.Write("noisy.json", R"({"detector": {"photons": 1, "read_noise": 1e6}})");
+  const std::string out = dir.File("out.csv");
+  const std::string common =
+      " measure --quiet --seed 2 --sample model:lambert --schedule inplane:step=10 --out " + out;
+  // Alone, the noisy instrument fails the same way: the failure is the computation's.
+  const CommandResult alone = RunBrdf(common + " --instrument " + noisy);
+  ASSERT_EQ(alone.exit_status, 3) << alone.err;
+  const CommandResult result =
+      RunCommand(Mpirun() + " -n 1 '" + BRDFKIT_BINARY + "'" + common + " : -n 1 '" +
+                 BRDFKIT_BINARY + "'" + common + " --instrument " + noisy);
+  EXPECT_EQ(result.exit_status, 3) << result.err;
+  const std::string line = "rank 1: the reference reading has no signal";
+  const size_t first = result.err.find(line);
+  EXPECT_NE(first, std::string::npos) << result.err;
+  EXPECT_EQ(result.err.find(line, first + 1), std::string::npos) << "reported twice";
+  EXPECT_EQ(dir.CountEntries(), 1) << "an output (or a temporary) was left behind";
+}
+
 // A table or report without its wall-clock fields ("time_s"), which alone differ between runs.
 std::string WithoutTimes(const std::string& text, bool csv) {
   std::istringstream lines(text);
