@@ -27,8 +27,8 @@ namespace {
 
 int g_rank = 0;
 int g_size = 1;
-bool g_active = false;              // MPI_Init was called
-bool g_failed_in_protocol = false;  // the last Distribute failed after every rank agreed
+[[maybe_unused]] bool g_active = false;  // MPI_Init was called (only read in an MPI build)
+bool g_failed_in_protocol = false;       // the last Distribute failed after every rank agreed
 
 // Message tags; results go to rank 0, stop and outcome come from it.
 enum Tag : int { kResult = 1, kDone = 2, kFailed = 3, kStop = 4, kOutcome = 5 };
