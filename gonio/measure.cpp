@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "core/parallel_ranks.h"
 #include "core/text.h"
 #include "gonio/model_sample.h"
 #include "gonio/rng.h"
@@ -213,8 +215,8 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
                      " incidences, each traced separately for a surface sample: use "
                      "hemisphere, equal-area or adaptive, or the sphere sample");
   }
-  const std::unique_ptr<GonioSample> sample = MakeSample(options.sample, instrument);
-  const Calibration calibration(instrument, ReferenceReading(instrument), options.seed);
+  std::unique_ptr<GonioSample> sample;
+  std::unique_ptr<Calibration> calibration;
 
   // Offsets of each incidence's readings in the global reading index (the RNG stream index).
   std::vector<size_t> offsets(schedule.incidences.size() + 1, 0);
@@ -222,13 +224,19 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
     offsets[g + 1] = offsets[g] + schedule.incidences[g].detectors.size();
   }
   const size_t total = offsets.back();
-  std::vector<Rgb> values(total, Rgb::Zero()), sigmas(total, Rgb::Zero());
-  std::vector<char> blocked(total, 0);
+  // The readings of the whole run, gathered on rank 0 only (core/parallel_ranks.h).
+  const size_t kept = ranks::IsRoot() ? total : 0;
+  std::vector<Rgb> values(kept, Rgb::Zero()), sigmas(kept, Rgb::Zero());
+  std::vector<char> blocked(kept, 0);
   const double cos_blocked = std::cos(DegToRad(instrument.blocked_within_deg));
   const double jitter = DegToRad(instrument.jitter_deg);
 
-  tbb::parallel_for(size_t{0}, schedule.incidences.size(), [&](size_t g) {
+  // One incidence's readings, per detector: blocked flag, value (RGB), sigma (RGB). Every random
+  // number comes from streams of (seed, incidence or reading index): no rank or thread shows.
+  constexpr size_t kDoubles = 7;
+  auto measure_incidence = [&](size_t g) {
     const Incidence& incidence = schedule.incidences[g];
+    std::vector<double> packed(incidence.detectors.size() * kDoubles, 0.0);
     Rng incidence_rng(options.seed, Stream::kIncidenceJitter, g);
     const double g1 = incidence_rng.Normal(), g2 = incidence_rng.Normal();
     const Vec3 wi = PerturbDirection(incidence.wi, jitter, g1, g2);
@@ -238,7 +246,7 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
       const size_t index = offsets[g] + k;
       const Vec3& wo = incidence.detectors[k].wo;
       if (incidence.wi.dot(wo) > cos_blocked) {
-        blocked[index] = 1;
+        packed[k * kDoubles] = 1;
         continue;
       }
       Rng detector_rng(options.seed, Stream::kDetectorJitter, index);
@@ -249,12 +257,13 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
     const Readings readings =
         sample->Measure(instrument, wi, detectors, options.seed, static_cast<uint64_t>(g));
     tbb::parallel_for(size_t{0}, indices.size(), [&](size_t j) {
-      const size_t index = indices[j];
-      const Vec3& wo = incidence.detectors[index - offsets[g]].wo;
-      calibration.Calibrate(readings.value[j], wo.z(), index, &values[index], &sigmas[index]);
+      const size_t index = indices[j], k = index - offsets[g];
+      const Vec3& wo = incidence.detectors[k].wo;
+      Rgb value, sigma;
+      calibration->Calibrate(readings.value[j], wo.z(), index, &value, &sigma);
       // Calibration is linear in the reading, so its slope carries a reading's error over.
-      const double slope = calibration.Slope(wo.z());
-      Rgb variance = sigmas[index].square();
+      const double slope = calibration->Slope(wo.z());
+      Rgb variance = sigma.square();
       if (!readings.standard_error.empty()) {
         // A traced sample's Monte Carlo error, independent of the detector noise.
         variance += (slope * readings.standard_error[j]).square();
@@ -262,10 +271,37 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
       variance +=
           (slope * PositioningSigma(*sample, instrument, incidence.wi, wo, readings.value[j]))
               .square();
-      sigmas[index] = variance.sqrt();
+      sigma = variance.sqrt();
+      for (int c = 0; c < 3; ++c) {
+        packed[k * kDoubles + 1 + c] = value[c];
+        packed[k * kDoubles + 4 + c] = sigma[c];
+      }
     });
-    if (options.advance) options.advance(static_cast<int64_t>(incidence.detectors.size()));
-  });
+    std::string bytes;
+    ranks::AppendBytes(&bytes, packed.data(), packed.size());
+    return bytes;
+  };
+  auto collect_incidence = [&](size_t g, int /*rank*/, std::string&& bytes) {
+    const size_t count = schedule.incidences[g].detectors.size();
+    std::vector<double> packed(count * kDoubles);
+    std::memcpy(packed.data(), bytes.data(), packed.size() * sizeof(double));
+    for (size_t k = 0; k < count; ++k) {
+      const double* p = &packed[k * kDoubles];
+      blocked[offsets[g] + k] = p[0] != 0;
+      values[offsets[g] + k] = Rgb(p[1], p[2], p[3]);
+      sigmas[offsets[g] + k] = Rgb(p[4], p[5], p[6]);
+    }
+    if (options.advance) options.advance(static_cast<int64_t>(count));
+  };
+  ranks::Distribute(
+      ranks::RoundRobin(schedule.incidences.size()),
+      [&]() {
+        sample = MakeSample(options.sample, instrument);
+        calibration =
+            std::make_unique<Calibration>(instrument, ReferenceReading(instrument), options.seed);
+      },
+      measure_incidence, collect_incidence);
+  if (!ranks::IsRoot()) return measurement;
 
   size_t skipped = 0;
   for (size_t g = 0; g < schedule.incidences.size(); ++g) {

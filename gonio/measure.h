@@ -22,7 +22,7 @@ struct MeasureOptions {
   Instrument instrument;
   std::string instrument_name = "default";  // the file it came from, for the metadata
   uint64_t seed = 1;
-  // Called with the number of finished readings (or pixels) from any thread; may be empty.
+  // Called with the number of finished readings (or views) on rank 0's main thread; may be empty.
   std::function<void(int64_t)> advance;
 };
 
@@ -33,6 +33,9 @@ std::unique_ptr<GonioSample> MakeSample(const std::string& spec, const Instrumen
 // Readings a run will make (for a progress bar's total).
 int64_t CountReadings(const MeasureOptions& options, const Schedule& schedule);
 
+// Under mpirun the incidences (the sphere's light positions) are split across the ranks
+// (core/parallel_ranks.h); the returned Measurement is complete on rank 0 and holds only the
+// metadata on the others. `advance` is called on rank 0 for every rank's finished readings.
 Measurement Measure(const MeasureOptions& options, const Schedule& schedule);
 
 // One standard deviation of the reading at nominal (wi, wo) caused by the arms' positioning

@@ -4,8 +4,12 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <cstring>
+#include <map>
+#include <string>
 
 #include "core/angles.h"
+#include "core/parallel_ranks.h"
 #include "core/text.h"
 #include "gonio/measure.h"
 #include "gonio/rng.h"
@@ -131,15 +135,48 @@ SphereAcquisition::View SphereAcquisition::Shade(const GBuffer& gbuffer, double 
 void SphereAcquisition::Acquire(const Schedule& schedule, uint64_t seed,
                                 const std::function<void(int64_t)>& advance,
                                 Measurement* measurement) const {
-  const GBuffer gbuffer = Rasterize(mesh_, camera_);
   const std::vector<double> thetas = SphereLightThetas(schedule);
-  for (size_t v = 0; v < thetas.size(); ++v) {
-    View view = Shade(gbuffer, 2.0 * thetas[v], seed, v);
-    measurement->samples.insert(measurement->samples.end(), view.samples.begin(),
-                                view.samples.end());
-    measurement->sigma.insert(measurement->sigma.end(), view.sigma.begin(), view.sigma.end());
-    if (advance) advance(1);
-  }
+  GBuffer gbuffer;
+  // Per sample: wi, wo, value, sigma (12 doubles); the views are split across MPI ranks.
+  constexpr size_t kDoubles = 12;
+  std::map<size_t, std::string> early;  // views that arrived before one they follow (rank 0)
+  size_t next_view = 0;
+  auto append = [&](const std::string& bytes) {
+    const size_t count = bytes.size() / (kDoubles * sizeof(double));
+    std::vector<double> numbers(count * kDoubles);
+    std::memcpy(numbers.data(), bytes.data(), numbers.size() * sizeof(double));
+    for (size_t k = 0; k < count; ++k) {
+      const double* p = &numbers[k * kDoubles];
+      measurement->samples.push_back(
+          {Vec3(p[0], p[1], p[2]), Vec3(p[3], p[4], p[5]), Rgb(p[6], p[7], p[8]), false});
+      measurement->sigma.push_back(Rgb(p[9], p[10], p[11]));
+    }
+  };
+  ranks::Distribute(
+      ranks::RoundRobin(thetas.size()), [&]() { gbuffer = Rasterize(mesh_, camera_); },
+      [&](size_t v) {
+        const View view = Shade(gbuffer, 2.0 * thetas[v], seed, v);
+        std::string bytes;
+        bytes.reserve(view.samples.size() * kDoubles * sizeof(double));
+        for (size_t k = 0; k < view.samples.size(); ++k) {
+          const Sample& sample = view.samples[k];
+          ranks::AppendBytes(&bytes, sample.wi.data(), 3);
+          ranks::AppendBytes(&bytes, sample.wo.data(), 3);
+          ranks::AppendBytes(&bytes, sample.value.data(), 3);
+          ranks::AppendBytes(&bytes, view.sigma[k].data(), 3);
+        }
+        return bytes;
+      },
+      [&](size_t v, int /*rank*/, std::string&& bytes) {
+        early.emplace(v, std::move(bytes));
+        for (auto found = early.find(next_view); found != early.end();
+             found = early.find(next_view)) {
+          append(found->second);
+          early.erase(found);
+          ++next_view;
+        }
+        if (advance) advance(1);
+      });
 }
 
 }  // namespace brdf::gonio

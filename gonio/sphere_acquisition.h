@@ -33,7 +33,8 @@ class SphereAcquisition {
 
   std::string Modelled() const;
   // Appends the samples (with sigma) of every light position to `measurement`, in light then
-  // pixel order; `advance` (may be empty) is told of each finished view.
+  // pixel order; `advance` (may be empty) is told of each finished view. Under MPI the views
+  // are split across ranks (core/parallel_ranks.h) and only rank 0's `measurement` is filled.
   void Acquire(const Schedule& schedule, uint64_t seed, const std::function<void(int64_t)>& advance,
                Measurement* measurement) const;
 

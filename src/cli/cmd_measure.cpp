@@ -1,6 +1,7 @@
 // brdf measure --sample SAMPLE [--schedule S] [--instrument J] [--seed N] [--threads N]
 // [--quiet] --out FILE: the virtual gonioreflectometer (DESIGN §5). Native CSV with sigma
-// columns, or MERL .binary when the schedule is `merl`.
+// columns, or MERL .binary when the schedule is `merl`. Under mpirun the incidences are split
+// across the ranks and rank 0 writes the file (DESIGN §11).
 #include <tbb/global_control.h>
 
 #include <iostream>
@@ -9,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "core/errors.h"
+#include "core/parallel_ranks.h"
 #include "core/progress.h"
 #include "gonio/instrument.h"
 #include "gonio/measure.h"
@@ -27,6 +29,9 @@ Command AddMeasureCommand(CLI::App& parent) {
   auto options = std::make_shared<Options>();
   CLI::App* app = parent.add_subcommand(
       "measure", "Simulate a gonioreflectometer measurement of a sample (virtual instrument)");
+  app->footer(
+      "Under mpirun the incidence directions are split across the ranks; rank 0 writes the file, "
+      "byte for byte the one a run without mpirun writes (--threads then applies per rank).");
   app->add_option("--sample", options->sample,
                   "model:MODEL (flat analytic sample; MODEL is a model string or FIT.json), "
                   "surface:FILE.json (ray-traced micro-geometry, see data/surfaces/) or "
@@ -54,7 +59,8 @@ Command AddMeasureCommand(CLI::App& parent) {
                   "(with, and only with, the merl schedule)")
       ->required();
 
-  return {app, [options]() {
+  return {app,
+          [options]() {
             std::optional<tbb::global_control> thread_limit;
             if (options->threads > 0) {
               thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
@@ -75,9 +81,11 @@ Command AddMeasureCommand(CLI::App& parent) {
                                ": the merl schedule and MERL .binary output go together "
                                "(--schedule merl --out FILE.binary)");
             }
-            Progress progress("measuring", gonio::CountReadings(measure, schedule), options->quiet);
+            Progress progress("measuring", gonio::CountReadings(measure, schedule),
+                              options->quiet || !ranks::IsRoot());
             measure.advance = [&progress](int64_t done) { progress.Advance(done); };
             const Measurement measurement = gonio::Measure(measure, schedule);
+            if (!ranks::IsRoot()) return 0;  // rank 0 gathered every rank's readings
             const WriteReport report =
                 WriteMeasurement(measurement, options->out, output_format.name);
             for (const std::string& warning : report.warnings) {
@@ -88,7 +96,8 @@ Command AddMeasureCommand(CLI::App& parent) {
                         << measurement.samples.size() << " samples)\n";
             }
             return 0;
-          }};
+          },
+          /*distributed=*/true};
 }
 
 }  // namespace brdf::cli

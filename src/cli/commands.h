@@ -11,6 +11,8 @@ namespace brdf::cli {
 struct Command {
   CLI::App* app = nullptr;
   std::function<int()> run;
+  // Splits its work across MPI ranks under mpirun (DESIGN §11); the others refuse to run there.
+  bool distributed = false;
 };
 
 Command AddInfoCommand(CLI::App& parent);
@@ -21,5 +23,6 @@ Command AddMeasureCommand(CLI::App& parent);
 Command AddEnergyCommand(CLI::App& parent);
 Command AddTonemapCommand(CLI::App& parent);
 Command AddRenderCommand(CLI::App& parent);
+Command AddBatchCommand(CLI::App& parent);
 
 }  // namespace brdf::cli

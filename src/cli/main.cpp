@@ -1,12 +1,36 @@
 // brdf: measure, fit, check and preview reflectance. Maps typed errors to exit statuses
 // (DESIGN §3): 0 success, 2 bad usage or bad input, 3 a computation failed, 1 an internal error.
+// Under mpirun every rank runs this (DESIGN §11); see ReportError for who prints what.
 #include <malloc.h>
 
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "cli/commands.h"
 #include "core/errors.h"
+#include "core/parallel_ranks.h"
+
+namespace {
+
+// Prints the error (rank 0 prints a job's failure for every rank; the others print only errors
+// of their own, naming their rank) and returns `status`. An error outside a distributed step
+// may leave the other ranks waiting for this one: the whole job is then ended with `status`.
+int ReportError(const std::string& message, int status) {
+  if (brdf::ranks::Size() == 1) {
+    std::cerr << "brdf: " + message + "\n";
+    return status;
+  }
+  if (!brdf::ranks::FailedInStep()) {
+    // One write per line, so that the ranks' lines do not interleave.
+    std::cerr << "brdf: rank " + std::to_string(brdf::ranks::Rank()) + ": " + message + "\n";
+    brdf::ranks::Abort(status);
+  }
+  if (brdf::ranks::IsRoot()) std::cerr << "brdf: " + message + "\n";
+  return status;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // A 1080p float RGBA image is 33 MB, above glibc's largest mmap threshold (32 MB): every such
@@ -15,6 +39,7 @@ int main(int argc, char** argv) {
   // the pipeline's stages reuse freed memory.
   mallopt(M_MMAP_THRESHOLD, 1 << 30);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  const brdf::ranks::Session mpi_session(&argc, &argv);
   CLI::App app{"brdfkit: measure, fit, check and preview reflectance (BRDFs)", "brdf"};
   app.set_version_flag("--version", std::string("brdf ") + BRDFKIT_VERSION);
   app.require_subcommand(1);
@@ -25,6 +50,7 @@ int main(int argc, char** argv) {
       brdf::cli::AddConvertCommand(app), brdf::cli::AddMeasureCommand(app),
       brdf::cli::AddFitCommand(app),     brdf::cli::AddEnergyCommand(app),
       brdf::cli::AddRenderCommand(app),  brdf::cli::AddTonemapCommand(app),
+      brdf::cli::AddBatchCommand(app),
   };
 
   try {
@@ -36,20 +62,28 @@ int main(int argc, char** argv) {
 
   try {
     for (const brdf::cli::Command& command : commands) {
-      if (command.app->parsed()) return command.run();
+      if (!command.app->parsed()) continue;
+      if (brdf::ranks::LaunchedByMpi() && !brdf::ranks::BuiltWithMpi()) {
+        std::cerr << "brdf: warning: started by mpirun, but this build has no MPI "
+                     "(BRDFKIT_MPI=OFF): every process runs the whole job on its own\n";
+      }
+      if (brdf::ranks::Size() > 1 && !command.distributed) {
+        throw brdf::UsageError("'" + command.app->get_name() +
+                               "' runs on one process; under mpirun only measure and batch split "
+                               "their work across ranks");
+      }
+      return command.run();
     }
+  } catch (const brdf::ranks::RankFailure& error) {
+    return ReportError(error.what(), error.exit_status());
   } catch (const brdf::ComputeError& error) {
-    std::cerr << "brdf: " << error.what() << "\n";
-    return 3;
+    return ReportError(error.what(), 3);
   } catch (const brdf::Error& error) {
-    std::cerr << "brdf: " << error.what() << "\n";
-    return 2;
+    return ReportError(error.what(), 2);
   } catch (const std::bad_alloc&) {
-    std::cerr << "brdf: out of memory\n";
-    return 1;
+    return ReportError("out of memory", 1);
   } catch (const std::exception& error) {
-    std::cerr << "brdf: internal error: " << error.what() << "\n";
-    return 1;
+    return ReportError(std::string("internal error: ") + error.what(), 1);
   }
   return 2;
 }

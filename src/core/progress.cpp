@@ -4,12 +4,24 @@
 
 #include <cstdio>
 
+#include "core/parallel_ranks.h"
+
 namespace brdf {
+namespace {
+
+// A terminal to draw on. Under mpirun a rank's stderr is a pipe to mpirun even when mpirun's is
+// a terminal; OpenMPI then gives the rank's stdout a pseudo-terminal, so that one tells.
+bool OnTerminal() {
+  if (::isatty(STDERR_FILENO)) return true;
+  return ranks::LaunchedByMpi() && ::isatty(STDOUT_FILENO);
+}
+
+}  // namespace
 
 Progress::Progress(std::string label, int64_t total, bool quiet)
     : label_(std::move(label)),
       total_(total),
-      enabled_(!quiet && ::isatty(STDERR_FILENO)),
+      enabled_(!quiet && OnTerminal()),
       start_(std::chrono::steady_clock::now()),
       last_draw_(start_) {}
 

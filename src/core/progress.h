@@ -1,5 +1,6 @@
 // Progress of a long run on stderr (DESIGN §3): shown only when stderr is a terminal and the
-// user did not ask for --quiet; redrawn at most ten times a second; thread-safe.
+// user did not ask for --quiet (under mpirun: when mpirun's output is a terminal); redrawn at
+// most ten times a second; thread-safe.
 #pragma once
 
 #include <atomic>
