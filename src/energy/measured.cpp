@@ -185,7 +185,7 @@ MeasuredBrdf TabulatedMeasuredBrdf(std::shared_ptr<const TabulatedBrdf> tabulate
   // Dense tables (MERL's half-vector grid, RGL's warp about the half vector) are densest where
   // the lobe is: integrate in the half vector, uniform in cos(theta_h).
   measured.coordinates = {LobeFrame::kHalfVector, 0.0};
-  measured.notes.push_back(tabulated->Describe());
+  measured.notes.insert(measured.notes.begin(), tabulated->Describe());
   return measured;
 }
 

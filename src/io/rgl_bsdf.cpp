@@ -277,7 +277,9 @@ Rgb RglBrdf::EvalCosine(const Vec3& wi, const Vec3& wo) const {
 
 Rgb RglBrdf::Eval(const Vec3& wi, const Vec3& wo) const {
   if (wi.z() <= 0.0 || wo.z() <= 0.0) return Rgb::Zero();
-  return EvalCosine(wi, wo) / wo.z();  // the file holds f cos(theta_o)
+  // The file holds f cos(theta_o); see the header for the choice of orientation.
+  if (wo.z() >= wi.z()) return EvalCosine(wi, wo) / wo.z();
+  return EvalCosine(wo, wi) / wi.z();
 }
 
 RglBrdf::Node RglBrdf::GridNode(int phi_index, int theta_index, int row, int col) const {
@@ -356,7 +358,8 @@ std::string RglBrdf::Describe() const {
          std::to_string(rows_) + "x" + std::to_string(cols_) +
          " table, bilinear, linear between the " + std::to_string(theta_i_.size()) +
          " theta_i nodes; negative channels clipped to 0; f = stored value" +
-         (jacobian_ ? " x ndf/(4 sigma)" : "") + " / cos(theta_o)";
+         (jacobian_ ? " x ndf/(4 sigma)" : "") +
+         " / cos(theta_o), read with the more grazing direction as the light (reciprocity)";
 }
 
 bool SniffRglBsdf(std::string_view head, int64_t) { return IsTensorFile(head); }
@@ -383,8 +386,13 @@ Measurement ReadRglBsdf(const std::string& path, const ReadOptions& options) {
           sample.missing = node.wo.z() <= 0.0 || grazing;
           below_horizon += node.wo.z() <= 0.0 && !grazing;
           grazing_nodes += grazing;
-          sample.value =
-              sample.missing ? Rgb::Zero() : Rgb(node.stored * node.jacobian_factor / node.wo.z());
+          // The node's own value where the view is the less grazing direction; elsewhere the
+          // evaluator's reciprocal reading, so that samples and evaluator agree everywhere.
+          if (!sample.missing) {
+            sample.value = node.wo.z() >= node.wi.z()
+                               ? Rgb(node.stored * node.jacobian_factor / node.wo.z())
+                               : brdf->Eval(node.wi, node.wo);
+          }
           measurement.samples.push_back(sample);
         }
       }
@@ -406,12 +414,15 @@ Measurement ReadRglBsdf(const std::string& path, const ReadOptions& options) {
   metadata["incidence"] = std::to_string(n_theta) + " theta_i (" + Degrees(brdf->theta_i()) +
                           " deg) x " + std::to_string(n_phi) + " phi_i (" + Degrees(brdf->phi_i()) +
                           " deg)" + (brdf->isotropic() ? ", isotropic" : ", anisotropic");
-  metadata["samples"] = "every grid node of every incidence, carried through the VNDF warp; " +
-                        std::to_string(below_horizon) +
-                        " nodes whose wo falls at or below the horizon are flagged missing" +
-                        (grazing_nodes > 0 ? ", and the " + std::to_string(grazing_nodes) +
-                                                 " nodes of the theta_i = 90 deg incidence"
-                                           : std::string());
+  metadata["samples"] =
+      "every grid node of every incidence, carried through the VNDF warp (the "
+      "stored value / cos(theta_o) where theta_o <= theta_i, else the "
+      "reciprocal reading, as the evaluation); " +
+      std::to_string(below_horizon) +
+      " nodes whose wo falls at or below the horizon are flagged missing" +
+      (grazing_nodes > 0 ? ", and the " + std::to_string(grazing_nodes) +
+                               " nodes of the theta_i = 90 deg incidence"
+                         : std::string());
   const char* channels[] = {"r", "g", "b"};
   std::string ranges;
   for (int c = 0; c < 3; ++c) {

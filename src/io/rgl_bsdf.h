@@ -39,8 +39,14 @@ class RglBrdf : public TabulatedBrdf {
   static std::shared_ptr<const RglBrdf> FromTensor(const TensorFile& file,
                                                    const ReadOptions& options = {});
 
-  Rgb Eval(const Vec3& wi, const Vec3& wo) const override;  // f, sr^-1
-  // What the file stores: f cos(theta_o) (zero below the horizon).
+  // f in sr^-1. The stored f cos(theta_o) is divided by the larger of the two cosines: the
+  // table is read with the more grazing direction as the light, f(wi, wo) = f(wo, wi)
+  // (reciprocity, DESIGN §1), so that a grazing view never divides a small, noisy value by a
+  // vanishing cosine. Exactly reciprocal by construction; where wo.z >= wi.z it is the
+  // measurement as stored.
+  Rgb Eval(const Vec3& wi, const Vec3& wo) const override;
+  // What the file stores, in its own orientation (wi the light): f cos(theta_o), zero below
+  // the horizon.
   Rgb EvalCosine(const Vec3& wi, const Vec3& wo) const;
   std::string Describe() const override;
   std::string LookupName() const override;
