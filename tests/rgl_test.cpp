@@ -237,8 +237,19 @@ TEST(RglBsdf, ReciprocityHoldsWithinTheMeasurementsOwnTolerance) {
   EXPECT_LT(paper_error, 0.03);
   const auto paint =
       RglBrdf::FromTensor(TensorFile::Read(DataPath("rgl-bsdf/colodur_napoli_4f_rgb.bsdf")));
-  EXPECT_LT(MedianReciprocityError(*paint, 2), 0.04);
+  EXPECT_LT(MedianReciprocityError(*paint, 1), 0.04);
   RecordProperty("paper_white_median_reciprocity", std::to_string(paper_error));
+  // The other five, printed for docs/formats.md; only the colour-shifting films exceed 15 %.
+  for (const char* name : {"cc_ibiza_sunset", "cc_iris_purple_gem", "cg_sunflower",
+                           "satin_rosaline", "vch_golden_yellow"}) {
+    const auto brdf = RglBrdf::FromTensor(
+        TensorFile::Read(DataPath("rgl-bsdf/" + std::string(name) + "_rgb.bsdf")));
+    const double error = MedianReciprocityError(*brdf, 1);
+    std::printf("median reciprocity difference: %s %.4f\n", name, error);
+    if (std::string(name).rfind("cc_", 0) != 0) {
+      EXPECT_LT(error, 0.15) << name;
+    }
+  }
   std::printf("median reciprocity difference: paper_white %.4f\n", paper_error);
 }
 
