@@ -289,3 +289,87 @@ TEST(RglBsdf, PaperWhiteAlbedoIsHighAndNearlyConstant) {
 
 }  // namespace
 }  // namespace brdf
+
+namespace brdf {
+namespace {
+
+// A tensor_file written field by field (layout in io/tensor_file.h).
+class TensorWriter {
+ public:
+  void Add(const std::string& name, TensorDtype dtype, std::vector<uint64_t> shape,
+           std::string data) {
+    fields_.push_back({name, dtype, std::move(shape), std::move(data)});
+  }
+  template <typename T>
+  static std::string Bytes(const std::vector<T>& values) {
+    return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  }
+  std::string Build() const {
+    uint64_t table = 18;
+    for (const Field& f : fields_) table += 2 + f.name.size() + 2 + 1 + 8 + 8 * f.shape.size();
+    std::string header("tensor_file\0", 12), data;
+    header += std::string("\x01\x00", 2);
+    Append<uint32_t>(&header, static_cast<uint32_t>(fields_.size()));
+    for (const Field& f : fields_) {
+      Append<uint16_t>(&header, static_cast<uint16_t>(f.name.size()));
+      header += f.name;
+      Append<uint16_t>(&header, static_cast<uint16_t>(f.shape.size()));
+      Append<uint8_t>(&header, static_cast<uint8_t>(f.dtype));
+      Append<uint64_t>(&header, table + data.size());
+      for (uint64_t extent : f.shape) Append<uint64_t>(&header, extent);
+      data += f.data;
+    }
+    return header + data;
+  }
+
+ private:
+  struct Field {
+    std::string name;
+    TensorDtype dtype;
+    std::vector<uint64_t> shape;
+    std::string data;
+  };
+  template <typename T>
+  static void Append(std::string* bytes, T value) {
+    bytes->append(reinterpret_cast<const char*>(&value), sizeof(T));
+  }
+  std::vector<Field> fields_;
+};
+
+// A spectral file with constant tables, in mixed dtypes: the warp is the identity, the
+// spectrum is flat (v at both wavelengths, so RGB (v, v, v) under any illuminant, core/colour.h),
+// ndf / (4 sigma) = 2 / (4 * 0.25) = 2, so f cos(theta_o) = 2 v everywhere above the horizon.
+TEST(RglBsdf, SpectralFileWithConstantTablesGivesTheClosedForm) {
+  const double v = 0.1;
+  TensorWriter writer;
+  writer.Add("description", TensorDtype::kU8, {4}, "flat");
+  writer.Add("theta_i", TensorDtype::kF32, {2}, TensorWriter::Bytes<float>({0.0f, 1.0f}));
+  writer.Add("phi_i", TensorDtype::kF64, {1}, TensorWriter::Bytes<double>({0.0}));
+  // 2.0 in binary16 is 0x4000.
+  writer.Add("ndf", TensorDtype::kF16, {2, 2},
+             TensorWriter::Bytes<uint16_t>({0x4000, 0x4000, 0x4000, 0x4000}));
+  writer.Add("sigma", TensorDtype::kF64, {2, 2},
+             TensorWriter::Bytes<double>({0.25, 0.25, 0.25, 0.25}));
+  writer.Add("vndf", TensorDtype::kF32, {1, 2, 2, 2},
+             TensorWriter::Bytes<float>(std::vector<float>(8, 1.0f)));
+  writer.Add("spectra", TensorDtype::kF32, {1, 2, 2, 3, 3},
+             TensorWriter::Bytes<float>(std::vector<float>(36, static_cast<float>(v))));
+  writer.Add("wavelengths", TensorDtype::kU16, {2}, TensorWriter::Bytes<uint16_t>({400, 700}));
+  writer.Add("jacobian", TensorDtype::kU8, {1}, std::string(1, '\x01'));
+  const TensorFile file = TensorFile::Parse("flat.bsdf", writer.Build());
+  const std::shared_ptr<const RglBrdf> brdf = RglBrdf::FromTensor(file);
+  EXPECT_NE(brdf->colour_source().find("spectra field (2 wavelengths"), std::string::npos);
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 wi = SphericalDirection(std::acos(uniform(random)), 2 * kPi * uniform(random));
+    const Vec3 wo = SphericalDirection(std::acos(uniform(random)), 2 * kPi * uniform(random));
+    const Rgb value = brdf->EvalCosine(wi, wo);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(value[c], 2 * static_cast<float>(v), 1e-4);
+    const Rgb f = brdf->Eval(wi, wo);
+    EXPECT_NEAR(f[1], 2 * static_cast<float>(v) / std::max(wi.z(), wo.z()), 1e-3 * f[1]);
+  }
+}
+
+}  // namespace
+}  // namespace brdf
