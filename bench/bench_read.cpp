@@ -1,12 +1,18 @@
 // Reading speed of every reader: a full 34,992,012-byte MERL table (generated from an analytic
-// model, since no MERL file ships with the project) and the real Cornell and Zemax files.
-// Run through bench/read_bench, which also measures peak memory per file.
+// model, since no MERL file ships with the project) and the real Cornell, Zemax, RGL-EPFL and
+// ALTA files; and evaluations per second of the dense-table evaluators (the RGL inverse warp,
+// with the MERL cell lookup as its peer) on 2 threads. Run through bench/read_bench, which also
+// measures peak memory per file.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <random>
 #include <string>
+#include <vector>
 
+#include "core/angles.h"
 #include "io/formats.h"
 #include "io/merl.h"
 #include "models/model_string.h"
@@ -61,6 +67,63 @@ BENCHMARK_CAPTURE(BM_ReadFile, pbrt_cayman, "cornell-pbrt-v2/cayman.brdf")
 BENCHMARK_CAPTURE(BM_ReadFile, zemax, "zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+#define BRDFKIT_READ_RGL(name)                                              \
+  BENCHMARK_CAPTURE(BM_ReadFile, rgl_##name, "rgl-bsdf/" #name "_rgb.bsdf") \
+      ->Unit(benchmark::kMillisecond)                                       \
+      ->UseRealTime();
+BRDFKIT_READ_RGL(cc_ibiza_sunset)
+BRDFKIT_READ_RGL(cc_iris_purple_gem)
+BRDFKIT_READ_RGL(cg_sunflower)
+BRDFKIT_READ_RGL(colodur_napoli_4f)
+BRDFKIT_READ_RGL(paper_white)
+BRDFKIT_READ_RGL(satin_rosaline)
+BRDFKIT_READ_RGL(vch_golden_yellow)
+#undef BRDFKIT_READ_RGL
+BENCHMARK_CAPTURE(BM_ReadFile, alta_3m_jaune, "alta-retro/retro-3M-jaune.dat")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_ReadFile, alta_gray_tape, "alta-retro/retro-gray-tape.dat")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// Random direction pairs in the upper hemisphere, the same for every evaluator.
+const std::vector<std::pair<Vec3, Vec3>>& DirectionPairs() {
+  static const std::vector<std::pair<Vec3, Vec3>> pairs = [] {
+    std::mt19937_64 random(3);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    std::vector<std::pair<Vec3, Vec3>> list(1 << 16);
+    for (auto& pair : list) {
+      pair.first = SphericalDirection(std::acos(uniform(random)), 2 * kPi * uniform(random));
+      pair.second = SphericalDirection(std::acos(uniform(random)), 2 * kPi * uniform(random));
+    }
+    return list;
+  }();
+  return pairs;
+}
+
+void BM_Evaluate(benchmark::State& state, const Measurement* measurement) {
+  const auto& pairs = DirectionPairs();
+  size_t k = static_cast<size_t>(state.thread_index()) * 7919;
+  for (auto _ : state) {
+    const auto& pair = pairs[k++ & (pairs.size() - 1)];
+    benchmark::DoNotOptimize(measurement->tabulated->Eval(pair.first, pair.second));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+const Measurement& Loaded(const std::string& path) {
+  static std::map<std::string, Measurement> loaded;
+  auto it = loaded.find(path);
+  if (it == loaded.end()) it = loaded.emplace(path, ReadMeasurement(path)).first;
+  return it->second;
+}
+const std::string kData = BRDFKIT_DATA_DIR;
+BENCHMARK_CAPTURE(BM_Evaluate, rgl_paper_white, &Loaded(kData + "/rgl-bsdf/paper_white_rgb.bsdf"))
+    ->Threads(2)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_Evaluate, rgl_cg_sunflower, &Loaded(kData + "/rgl-bsdf/cg_sunflower_rgb.bsdf"))
+    ->Threads(2)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_Evaluate, merl_lookup, &Loaded(MerlPath()))->Threads(2)->UseRealTime();
 
 }  // namespace
 }  // namespace brdf

@@ -22,26 +22,11 @@ constexpr int kNearestNeighbours = 4;
 // (and the report says so).
 constexpr size_t kMaxNeighbourGroup = 4096;
 
+// Samples written from a MERL table into another format (native CSV keeps the "grid"
+// metadata); a measurement read with its table asks the table instead (Measurement::tabulated).
 bool IsMerlGrid(const Measurement& measurement) {
-  if (measurement.format == "merl") return true;
   auto it = measurement.metadata.find("grid");
   return it != measurement.metadata.end() && it->second.rfind("MERL", 0) == 0;
-}
-
-// dwi dwo of the MERL cell holding (wi, wo): 4 cos(theta_d) dw_h dw_d with phi_h integrated
-// out (isotropy), theta_h bins of width ((i+1)^2 - i^2) / 90^2 * pi/2.
-double MerlCellMeasure(const Vec3& wi, const Vec3& wo) {
-  // Only theta_h and theta_d are needed: cos theta_h = h.z and cos theta_d = wi.h.
-  const Vec3 half_vector = (wi + wo).normalized();
-  const int i = MerlTable::ThetaHalfIndex(std::acos(std::clamp(half_vector.z(), -1.0, 1.0)));
-  const int j = MerlTable::ThetaDiffIndex(std::acos(std::clamp(wi.dot(half_vector), -1.0, 1.0)));
-  const HalfDiff centre = MerlTable::CellCentre(i, j, 0);
-  const double n = MerlTable::kThetaHalfBins;
-  const double d_theta_h = ((i + 1) * (i + 1) - i * i) / (n * n) * (0.5 * kPi);
-  const double d_theta_d = 0.5 * kPi / MerlTable::kThetaDiffBins;
-  const double d_phi_d = kPi / MerlTable::kPhiDiffBins;
-  return 4.0 * std::cos(centre.theta_d) * std::sin(centre.theta_h) * std::sin(centre.theta_d) *
-         d_theta_h * d_theta_d * d_phi_d;
 }
 
 // Area of the detector directions nearest each sample of one incidence group, from the
@@ -116,9 +101,15 @@ PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
   }
 
   // Solid-angle weights.
-  if (IsMerlGrid(measurement)) {
+  if (measurement.tabulated != nullptr) {
+    const TabulatedBrdf& table = *measurement.tabulated;
     tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
-      samples[k].weight = MerlCellMeasure(samples[k].wi, samples[k].wo);
+      samples[k].weight = table.CellMeasure(samples[k].wi, samples[k].wo);
+    });
+    prepared.weighting = table.CellMeasureName();
+  } else if (IsMerlGrid(measurement)) {
+    tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
+      samples[k].weight = MerlTable::CellMeasure(samples[k].wi, samples[k].wo);
     });
     prepared.weighting = "MERL cell measure 4 cos(theta_d) dw_h dw_d";
   } else {

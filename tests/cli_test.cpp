@@ -136,8 +136,8 @@ TEST(Cli, QuickDemoSimulatesFitsAndReports) {
   EXPECT_NE(result.out.find("plastic-sphere"), std::string::npos);
   std::ifstream stream(dir.File("summary.json"));
   const nlohmann::json json = nlohmann::json::parse(stream);
-  // data/ holds 4 ASTM, 5 pbrt-v2 and 1 Zemax file.
-  EXPECT_EQ(json["measurements"].size(), 10u);
+  // data/ holds 4 ASTM, 5 pbrt-v2, 1 Zemax, 7 RGL-EPFL and 2 ALTA files.
+  EXPECT_EQ(json["measurements"].size(), 19u);
   for (const nlohmann::json& row : json["measurements"]) EXPECT_GT(row["samples"], 0);
   // Three simulated samples and two real files in --quick, each fitted with four models.
   ASSERT_EQ(json["datasets"].size(), 5u);

@@ -1,19 +1,61 @@
-// brdf convert IN OUT [--format NAME] [--illuminant D65|E]: rewrite a measurement in another
-// format. MERL to MERL copies the validated table unchanged, so the round trip is bit-exact
-// (a detour through sr^-1 values would not be: x * (1/1500) * 1500 is not always x).
+// brdf convert IN OUT [--format NAME] [--illuminant D65|E] [--schedule SPEC]: rewrite a
+// measurement in another format. MERL to MERL copies the validated table unchanged, so the
+// round trip is bit-exact (a detour through sr^-1 values would not be: x * (1/1500) * 1500 is
+// not always x). Dense tables (a reader's evaluator, Measurement::tabulated) become a MERL table
+// by evaluation at the cell centres (WriteMerl), and with --schedule are evaluated at the
+// geometries of a gonio schedule instead of writing their own samples.
 #include <iostream>
 #include <memory>
 
 #include "cli/commands.h"
 #include "core/colour.h"
+#include "core/errors.h"
+#include "gonio/schedule.h"
 #include "io/formats.h"
 #include "io/merl.h"
 
 namespace brdf::cli {
+namespace {
+
+// The input's evaluator at every geometry of the schedule; NaN (a missing MERL cell) becomes a
+// missing sample.
+Measurement EvaluateOnSchedule(const Measurement& input, const std::string& spec) {
+  if (input.tabulated == nullptr) {
+    throw UsageError("--schedule needs a dense input with an evaluator (MERL, RGL-EPFL); " +
+                     input.source + " is " + input.format + " (scattered samples)");
+  }
+  const gonio::Schedule schedule = gonio::MakeSchedule(spec);
+  Measurement output;
+  output.metadata = input.metadata;
+  // What described the input's own samples no longer applies (a "grid: MERL" key would make a
+  // fit weight these samples as MERL cells).
+  for (const char* key : {"grid", "samples", "missing"}) output.metadata.erase(key);
+  output.metadata["schedule"] = schedule.spec;
+  output.metadata["evaluation"] = "values evaluated at the schedule's geometries through " +
+                                  input.tabulated->LookupName() + " (" + input.format + " " +
+                                  input.source + ")";
+  output.source = input.source;
+  output.format = input.format;
+  for (const gonio::Incidence& incidence : schedule.incidences) {
+    for (const gonio::Detector& detector : incidence.detectors) {
+      Sample sample;
+      sample.wi = incidence.wi;
+      sample.wo = detector.wo;
+      sample.value = input.tabulated->Eval(sample.wi, sample.wo);
+      sample.missing = !sample.value.allFinite();
+      if (sample.missing) sample.value = Rgb::Zero();
+      output.samples.push_back(sample);
+      if (schedule.has_weight) output.weight.push_back(detector.weight);
+    }
+  }
+  return output;
+}
+
+}  // namespace
 
 Command AddConvertCommand(CLI::App& parent) {
   struct Options {
-    std::string input, output, format, illuminant = "D65";
+    std::string input, output, format, illuminant = "D65", schedule;
     bool quiet = false;
   };
   auto options = std::make_shared<Options>();
@@ -27,6 +69,9 @@ Command AddConvertCommand(CLI::App& parent) {
                   "output format, overriding the extension (native-csv, merl)");
   app->add_option("--illuminant", options->illuminant, "illuminant for spectral inputs (D65 or E)")
       ->capture_default_str();
+  app->add_option("--schedule", options->schedule,
+                  "evaluate a dense input (MERL, RGL-EPFL) at the geometries of a gonio schedule "
+                  "(as in brdf measure, e.g. inplane:step=5) instead of writing its own samples");
   app->add_flag("--quiet", options->quiet, "print nothing on success");
 
   return {app, [options]() {
@@ -34,13 +79,17 @@ Command AddConvertCommand(CLI::App& parent) {
             const FileFormat& input_format = DetectFormat(options->input);
             WriteReport report;
             size_t samples = 0;
-            if (input_format.name == "merl" && output_format.name == "merl") {
+            if (input_format.name == "merl" && output_format.name == "merl" &&
+                options->schedule.empty()) {
               MerlTable::Read(options->input).Write(options->output);
               samples = MerlTable::kCells;
             } else {
               ReadOptions read_options;
               read_options.illuminant = ParseIlluminant(options->illuminant);
-              const Measurement measurement = ReadMeasurement(options->input, read_options);
+              Measurement measurement = ReadMeasurement(options->input, read_options);
+              if (!options->schedule.empty()) {
+                measurement = EvaluateOnSchedule(measurement, options->schedule);
+              }
               samples = measurement.samples.size();
               report = WriteMeasurement(measurement, options->output, output_format.name);
             }

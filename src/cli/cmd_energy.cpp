@@ -76,7 +76,8 @@ Command AddEnergyCommand(CLI::App& parent) {
       "whether or not the material conserves energy; the verdict is in the output)");
   app->add_option("SOURCE", options->source,
                   "a model string (e.g. blinn-phong:rho_s=0.04:m=200), a fit report (.json) or a "
-                  "measurement file (MERL .binary, ASTM, pbrt-v2 .brdf, Zemax .bsdf, native CSV)")
+                  "measurement file (MERL .binary, ASTM, pbrt-v2 .brdf, Zemax or RGL-EPFL .bsdf, "
+                  "ALTA .dat, native CSV)")
       ->required();
   app->add_option("--method", options->method,
                   "quadrature (adaptive, lobe-centred), mc (cosine-weighted Monte Carlo) or "

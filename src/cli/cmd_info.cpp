@@ -17,7 +17,8 @@ Command AddInfoCommand(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "info", "Describe a measurement file: format, samples, angular coverage, value range");
   app->add_option("FILE", options->path,
-                  "measurement file (native CSV, MERL .binary, ASTM, pbrt-v2 .brdf, Zemax .bsdf)")
+                  "measurement file (native CSV, MERL .binary, ASTM, pbrt-v2 .brdf, Zemax or "
+                  "RGL-EPFL .bsdf, ALTA .dat)")
       ->required();
   app->add_flag("--json", options->json, "print JSON instead of the text table");
 

@@ -46,8 +46,8 @@ Command AddRenderCommand(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "render", "Render a preview sphere of a material through the HDR pipeline to PNG (and EXR)");
   app->add_option("MATERIAL", options->material,
-                  "model string, FIT.json, or measurement file (MERL table lookup; other "
-                  "formats inverse-distance, tabulated)")
+                  "model string, FIT.json, or measurement file (MERL and RGL-EPFL through "
+                  "their evaluator; other formats inverse-distance, tabulated)")
       ->required();
   app->add_option("--out", options->output, "8-bit sRGB PNG to write")->required();
   app->add_option("--vs", options->versus,

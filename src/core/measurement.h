@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,25 @@ struct Sample {
   bool missing = false;  // the instrument has no value here (e.g. MERL's negative entries)
 };
 
+// A reader's evaluator for dense tabulated data (MERL tables, RGL-EPFL tensors; DESIGN §4): a
+// capability consumers ask for instead of testing format names. Energy, render, fit and convert
+// use it when present; data without one go through scattered interpolation.
+class TabulatedBrdf {
+ public:
+  virtual ~TabulatedBrdf() = default;
+  // f(wi, wo) in sr^-1, no cosine factor (DESIGN §1); NaN where the table has no value (e.g.
+  // a MERL cell marked missing). Consumers ask only above the horizon.
+  virtual Rgb Eval(const Vec3& wi, const Vec3& wo) const = 0;
+  // One line for reports: what the table is and how it is evaluated.
+  virtual std::string Describe() const = 0;
+  // Short name of the evaluation, e.g. "MERL table lookup", for a preview's summary line.
+  virtual std::string LookupName() const = 0;
+  // The measure dwi dwo (sr^2) of the table cell that the reader's sample at (wi, wo) stands
+  // for, the solid-angle weight of a fit; and a few words saying what it is.
+  virtual double CellMeasure(const Vec3& wi, const Vec3& wo) const = 0;
+  virtual std::string CellMeasureName() const = 0;
+};
+
 struct Measurement {
   std::string format;  // the reader's name, e.g. "merl"
   std::string source;  // the path it was read from
@@ -26,6 +46,8 @@ struct Measurement {
   std::vector<Sample> samples;
   std::vector<Rgb> sigma;      // empty, or one standard deviation per sample
   std::vector<double> weight;  // empty, or one weight per sample
+  // Set by readers of dense tables: evaluates between the samples (see TabulatedBrdf).
+  std::shared_ptr<const TabulatedBrdf> tabulated;
 
   bool has_sigma() const { return !sigma.empty(); }
   bool has_weight() const { return !weight.empty(); }

@@ -89,10 +89,17 @@ bool StartsWith(std::string_view text, std::string_view prefix) {
   return text.substr(0, prefix.size()) == prefix;
 }
 
+std::string PrintableText(std::string_view text) {
+  std::string printable;
+  printable.reserve(text.size());
+  for (unsigned char c : text) printable += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
+  return printable;
+}
+
 namespace {
 std::string Quote(std::string_view field) {
   constexpr size_t kMaxShown = 40;
-  std::string shown(field.substr(0, kMaxShown));
+  std::string shown = PrintableText(field.substr(0, kMaxShown));
   if (field.size() > kMaxShown) shown += "...";
   return "'" + shown + "'";
 }

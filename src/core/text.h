@@ -49,6 +49,9 @@ std::string FormatNumber(double value);
 std::string FormatNumber(double value, int significant);
 
 std::string_view Trim(std::string_view text);
+// `text` with every byte that is not printable ASCII shown as '?', for quoting file contents in
+// messages (a binary file must never put raw bytes on the terminal).
+std::string PrintableText(std::string_view text);
 bool StartsWith(std::string_view text, std::string_view prefix);
 
 // Parses a whole field as a finite double; throws ParseError at the reader's line naming

@@ -173,23 +173,24 @@ std::string OneDecimal(double degrees) { return FormatNumber(std::round(degrees 
 
 }  // namespace
 
-MeasuredBrdf MerlMeasuredBrdf(std::shared_ptr<const MerlTable> table, const std::string& source) {
-  int64_t missing = 0;
-  for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) missing += table->raw(0, cell) < 0.0;
+MeasuredBrdf TabulatedMeasuredBrdf(std::shared_ptr<const TabulatedBrdf> tabulated,
+                                   const std::string& source) {
   MeasuredBrdf measured;
   measured.source = source;
-  measured.brdf = [table](const Vec3& wi, const Vec3& wo) {
-    BrdfSample sample{table->Lookup(wi, wo), true};
+  measured.brdf = [tabulated](const Vec3& wi, const Vec3& wo) {
+    BrdfSample sample{tabulated->Eval(wi, wo), true};
     sample.supported = sample.value.allFinite();
     return sample;
   };
-  // MERL's grid is a half-vector grid: integrate where it is dense (theta_h), uniform in
-  // cos(theta_h).
+  // Dense tables (MERL's half-vector grid, RGL's warp about the half vector) are densest where
+  // the lobe is: integrate in the half vector, uniform in cos(theta_h).
   measured.coordinates = {LobeFrame::kHalfVector, 0.0};
-  measured.notes.push_back("MERL table: nearest-cell lookup (Matusik et al. 2003 grid); " +
-                           std::to_string(missing) + " of " + std::to_string(MerlTable::kCells) +
-                           " cells missing count as zero");
+  measured.notes.insert(measured.notes.begin(), tabulated->Describe());
   return measured;
+}
+
+MeasuredBrdf MerlMeasuredBrdf(std::shared_ptr<const MerlTable> table, const std::string& source) {
+  return TabulatedMeasuredBrdf(MerlTabulated(std::move(table)), source);
 }
 
 MeasuredBrdf ScatteredMeasuredBrdf(const Measurement& measurement) {
@@ -214,11 +215,15 @@ MeasuredBrdf ScatteredMeasuredBrdf(const Measurement& measurement) {
   return measured;
 }
 
-MeasuredBrdf LoadMeasuredBrdf(const std::string& path) {
-  if (DetectFormat(path).name == "merl") {
-    return MerlMeasuredBrdf(std::make_shared<const MerlTable>(MerlTable::Read(path)), path);
+MeasuredBrdf MeasuredBrdfOf(const Measurement& measurement) {
+  if (measurement.tabulated != nullptr) {
+    return TabulatedMeasuredBrdf(measurement.tabulated, measurement.source);
   }
-  return ScatteredMeasuredBrdf(ReadMeasurement(path));
+  return ScatteredMeasuredBrdf(measurement);
+}
+
+MeasuredBrdf LoadMeasuredBrdf(const std::string& path) {
+  return MeasuredBrdfOf(ReadMeasurement(path));
 }
 
 }  // namespace brdf

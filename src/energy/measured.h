@@ -1,5 +1,6 @@
 // Measured data as an albedo integrand, through interpolation:
-//  - a MERL table by its own cell lookup (nearest cell; missing cells are holes);
+//  - dense tables through the reader's evaluator (Measurement::tabulated: a MERL table's
+//    nearest-cell lookup, where missing cells are holes; an RGL tensor's inverse warp);
 //  - scattered samples (Cornell ASTM / pbrt-v2, Zemax, native CSV) by inverse-distance
 //    weighting of the nearest samples in a space that uses the symmetries every isotropic BRDF
 //    has (see ScatteredInterpolator below), with a coverage radius beyond which a value is
@@ -24,13 +25,16 @@ struct MeasuredBrdf {
   std::vector<std::string> notes;
 };
 
+MeasuredBrdf TabulatedMeasuredBrdf(std::shared_ptr<const TabulatedBrdf> tabulated,
+                                   const std::string& source);
 MeasuredBrdf MerlMeasuredBrdf(std::shared_ptr<const MerlTable> table, const std::string& source);
 
 // Scattered, isotropic data. Throws InputError naming the source when no sample is usable.
 MeasuredBrdf ScatteredMeasuredBrdf(const Measurement& measurement);
 
-// Reads a measurement file (MERL straight into its table, every other format through
-// ReadMeasurement) and wraps it as above.
+// The reader's evaluator when the measurement has one, else scattered interpolation.
+MeasuredBrdf MeasuredBrdfOf(const Measurement& measurement);
+// Reads a measurement file and wraps it as MeasuredBrdfOf does.
 MeasuredBrdf LoadMeasuredBrdf(const std::string& path);
 
 }  // namespace brdf

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/errors.h"
+#include "io/rgl_bsdf.h"
 
 namespace brdf {
 namespace {
@@ -59,6 +60,20 @@ const std::vector<FileFormat>& FileFormats() {
        {".bsdf"},
        &SniffZemax,
        &ReadZemax,
+       nullptr},
+      // After Zemax: both use .bsdf, and a file that neither the magic nor the Zemax keywords
+      // identify is more likely a broken Zemax text than a tensor_file.
+      {"rgl-bsdf",
+       "RGL-EPFL tensor_file material (Dupuy & Jakob 2018), RGB or spectral",
+       {".bsdf"},
+       &SniffRglBsdf,
+       &ReadRglBsdf,
+       nullptr},
+      {"alta",
+       "ALTA data text (ISOTROPIC_TL_TV_PROJ_DPHI input, f or f cos output)",
+       {".dat", ".alta"},
+       &SniffAlta,
+       &ReadAlta,
        nullptr},
   };
   return formats;

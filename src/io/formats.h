@@ -23,7 +23,7 @@ struct WriteReport {
 };
 
 struct FileFormat {
-  std::string name;                     // "native-csv", "merl", "astm", "pbrt-brdf", "zemax"
+  std::string name;  // "native-csv", "merl", "astm", "pbrt-brdf", "zemax", "rgl-bsdf", "alta"
   std::string description;              // one line for --help and `brdf info`
   std::vector<std::string> extensions;  // lower case, with the dot
   // True when the first bytes of a file (up to 4 KiB) and its size say "this is mine".
@@ -62,5 +62,8 @@ bool SniffPbrtBrdf(std::string_view head, int64_t file_size);
 
 Measurement ReadZemax(const std::string& path, const ReadOptions& options);
 bool SniffZemax(std::string_view head, int64_t file_size);
+
+Measurement ReadAlta(const std::string& path, const ReadOptions& options);
+bool SniffAlta(std::string_view head, int64_t file_size);
 
 }  // namespace brdf

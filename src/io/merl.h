@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,9 @@ class MerlTable {
   static int64_t CellIndex(int theta_h_index, int theta_diff_index, int phi_diff_index);
   static HalfDiff CellCentre(int theta_h_index, int theta_diff_index, int phi_diff_index);
   static int64_t CellOf(const Vec3& wi, const Vec3& wo);
+  // dwi dwo of the cell holding (wi, wo): 4 cos(theta_d) dw_h dw_d with phi_h integrated out
+  // (isotropy), theta_h bins of width ((i+1)^2 - i^2) / 90^2 * pi/2.
+  static double CellMeasure(const Vec3& wi, const Vec3& wo);
 
   // Stored (unscaled) value of a cell; negative means missing.
   double raw(int channel, int64_t cell) const { return raw_[channel * kCells + cell]; }
@@ -66,5 +70,9 @@ class MerlTable {
  private:
   std::vector<double> raw_;  // 3 * kCells, channel-major as in the file
 };
+
+// The table as a reader's evaluator (DESIGN §4): nearest-cell lookup (Lookup), NaN in missing
+// cells; the cell measure above. The description counts the missing cells.
+std::shared_ptr<const TabulatedBrdf> MerlTabulated(std::shared_ptr<const MerlTable> table);
 
 }  // namespace brdf

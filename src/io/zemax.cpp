@@ -248,7 +248,7 @@ Measurement ReadZemax(const std::string& path, const ReadOptions&) {
     } else if (header.value.empty() && EqualsIgnoringCase(header.keyword, spectral_content)) {
       // The spectral content indicator line that precedes DataBegin ("Monochrome").
     } else {
-      reader.Fail("unexpected header line '" + std::string(line.substr(0, 40)) +
+      reader.Fail("unexpected header line '" + PrintableText(line.substr(0, 40)) +
                   "' (expected Source, Symmetry, SpectralContent, ScatterType, SampleRotation, "
                   "AngleOfIncidence, ScatterAzimuth, ScatterRadial or DataBegin)");
     }
@@ -291,7 +291,7 @@ Measurement ReadZemax(const std::string& path, const ReadOptions&) {
     }
     if (tis.keyword != "TIS") {
       reader.Fail("expected 'TIS value' to open " + block + ", found '" +
-                  std::string(line.substr(0, 40)) + "'");
+                  PrintableText(line.substr(0, 40)) + "'");
     }
     ParseNumber(reader, tis.value, "TIS (total integrated scatter)");
     tis_list += (tis_list.empty() ? "" : ", ") + std::string(tis.value);  // as written
@@ -328,7 +328,7 @@ Measurement ReadZemax(const std::string& path, const ReadOptions&) {
                           " angles AngleOfIncidence lists"
                     : "expected DataEnd after " + std::to_string(incidences.degrees.size()) +
                           " data blocks of " + std::to_string(rows_per_block) + " rows, found '" +
-                          std::string(line.substr(0, 40)) + "'");
+                          PrintableText(line.substr(0, 40)) + "'");
   }
   if (NextContentLine(&reader, &line)) reader.Fail("unexpected content after DataEnd");
 

@@ -34,19 +34,21 @@ class ModelMaterial : public Material {
   std::optional<LobeCoordinates> lobe_;
 };
 
-// A MERL table, looked up cell by cell through the shared measured-data integrand
-// (energy/measured.h); NaN where the cell is missing.
-class MerlMaterial : public Material {
+// Dense tabulated data (MERL, RGL-EPFL) through the reader's evaluator (Measurement::tabulated,
+// wrapped by energy/measured.h); NaN where a MERL cell is missing.
+class MeasuredTableMaterial : public Material {
  public:
-  explicit MerlMaterial(MeasuredBrdf measured) : measured_(std::move(measured)) {}
+  MeasuredTableMaterial(MeasuredBrdf measured, std::string lookup_name)
+      : measured_(std::move(measured)), lookup_name_(std::move(lookup_name)) {}
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override {
     if (wi.z() <= 0.0 || wo.z() <= 0.0) return Rgb::Zero();
     return measured_.brdf(wi, wo).value;
   }
-  std::string Describe() const override { return measured_.source + " (MERL table lookup)"; }
+  std::string Describe() const override { return measured_.source + " (" + lookup_name_ + ")"; }
 
  private:
   MeasuredBrdf measured_;
+  std::string lookup_name_;
 };
 
 // Scattered data: the shared inverse-distance interpolant (energy/measured.h), tabulated once
@@ -168,9 +170,12 @@ std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
                      "no such file, and not a model string (models: lambert, phong, "
                      "blinn-phong, blinn-phong-exact)");
   }
-  const FileFormat& format = DetectFormat(spec);
-  if (format.name == "merl") return std::make_unique<MerlMaterial>(LoadMeasuredBrdf(spec));
-  return std::make_unique<TabulatedMaterial>(ReadMeasurement(spec));
+  Measurement measurement = ReadMeasurement(spec);
+  if (measurement.tabulated != nullptr) {
+    const std::string lookup_name = measurement.tabulated->LookupName();
+    return std::make_unique<MeasuredTableMaterial>(MeasuredBrdfOf(measurement), lookup_name);
+  }
+  return std::make_unique<TabulatedMaterial>(measurement);
 }
 
 }  // namespace brdf

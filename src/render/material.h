@@ -2,8 +2,9 @@
 // LoadModel) or a measurement file through interpolation (DESIGN §8).
 //
 // Measured data:
-//   * MERL tables are looked up cell by cell (MerlTable::Lookup: the half/difference cell
-//     containing (wi, wo), piecewise constant; missing cells render black and are counted).
+//   * Dense tables go through the reader's evaluator (Measurement::tabulated): MERL cell by
+//     cell (MerlTable::Lookup: the half/difference cell containing (wi, wo), piecewise
+//     constant; missing cells render black), RGL-EPFL through the inverse VNDF warp.
 //   * Scattered measurements (Cornell, Zemax, native CSV) use the same inverse-distance
 //     interpolant as `brdf energy` (energy/measured.h), tabulated once at the cell centres of
 //     the isotropic half/difference space (theta_h, theta_d in [0, pi/2], phi_d folded into
