@@ -308,6 +308,55 @@ TEST(FitRealData, CornellAndZemaxFitsArePinned) {
   }
 }
 
+// The microfacet rungs on every bundled real file (the pbrt-v2 copies of the ASTM files hold
+// the same numbers; mystique exists only there): each fit converges, conserves energy and
+// lands on pinned metrics (regression values from this implementation, docs/real-data.md).
+struct PinnedMicrofacetFit {
+  const char* file;
+  double ggx_rmse;
+  double beckmann_rmse;
+};
+const PinnedMicrofacetFit kPinnedMicrofacetFits[] = {
+    {"cornell-astm/acryl_blue.astm", 0.46199805447624104, 0.5117428809754615},
+    {"cornell-astm/cayman.astm", 1.1189257168636197, 1.1050907870633575},
+    {"cornell-astm/garnet_red.astm", 0.05027681634519808, 0.061924602465386273},
+    {"cornell-astm/krylon_blue.astm", 0.31064249708430142, 0.39973308525042056},
+    {"cornell-pbrt-v2/mystique.brdf", 1.3302276649940015, 1.3245852902359325},
+    {"zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf", 0.16233859100495876, 0.17732607759371016},
+};
+
+void ExpectPinnedMicrofacetFits(const std::string& model) {
+  for (const PinnedMicrofacetFit& expected : kPinnedMicrofacetFits) {
+    const Measurement measurement = ReadMeasurement(testing::DataPath(expected.file));
+    const FitResult fit = FitModel(measurement, model, FitOptions{});
+    const double rmse = model == "ggx" ? expected.ggx_rmse : expected.beckmann_rmse;
+    EXPECT_TRUE(fit.converged) << expected.file << ": " << fit.termination;
+    EXPECT_TRUE(fit.energy.conserving) << expected.file;
+    EXPECT_LT(fit.energy.max_albedo.maxCoeff(), 1.0) << expected.file;
+    EXPECT_TRUE(fit.stderr_available) << expected.file << ": " << fit.stderr_note;
+    EXPECT_NEAR(fit.metrics.rmse, rmse, 1e-3 * rmse) << expected.file << " " << model;
+    for (double p : fit.model.params()) EXPECT_TRUE(std::isfinite(p)) << expected.file;
+  }
+}
+
+TEST(FitRealData, EveryBundledFileFitsWithGgx) { ExpectPinnedMicrofacetFits("ggx"); }
+TEST(FitRealData, EveryBundledFileFitsWithBeckmann) { ExpectPinnedMicrofacetFits("beckmann"); }
+
+// The glossy Cornell paints and the Zemax vinyl show a Fresnel rise no power-cosine lobe
+// follows: auto climbs to a microfacet rung, and says so.
+TEST(FitRealData, AutoClimbsToAMicrofacetRungOnGlossyPaintAndZemax) {
+  for (const char* file :
+       {"cornell-astm/garnet_red.astm", "zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf"}) {
+    fitters::Selection selection;
+    const FitResult fit =
+        fitters::SelectAndFit(ReadMeasurement(testing::DataPath(file)), FitOptions{}, &selection);
+    EXPECT_EQ(fit.model.info().family, models::ModelFamily::kMicrofacet) << selection.reason;
+    EXPECT_NE(selection.reason.find("Fresnel and masking lower the rmse"), std::string::npos)
+        << selection.reason;
+    EXPECT_TRUE(fit.energy.conserving) << file;
+  }
+}
+
 TEST(FitCli, WritesTheReportAndItIsAcceptedAsAModel) {
   testing::ScratchDir dir;
   const std::string report = dir.File("fit.json");
@@ -364,6 +413,12 @@ TEST(FitEnergy, IntegratedMaximumIsTheClosedFormBound) {
     const Model truth = ParseModel(text);
     const FitResult fit = FitModel(Synthesize(truth, {}), truth.name(), FitOptions{});
     for (int c = 0; c < 3; ++c) {
+      if (truth.info().family == models::ModelFamily::kMicrofacet) {
+        // The bound is the maximum over all incidence, grazing included (microfacet_bound.h);
+        // the check's 90 angles stop at 89 deg, short of a smooth lobe's maximum.
+        EXPECT_LE(fit.energy.max_albedo[c], fit.energy.bound[c] + 1e-4) << text;
+        continue;
+      }
       EXPECT_NEAR(fit.energy.max_albedo[c], fit.energy.bound[c], 1e-4) << text;
       EXPECT_NEAR(fit.energy.theta_deg_at_max[c], 0.0, 1e-9) << text;
     }

@@ -16,6 +16,8 @@
 #include "energy/albedo.h"
 #include "energy/lobe_quadrature.h"
 #include "energy/model_terms.h"
+#include "energy/monte_carlo.h"
+#include "energy/random.h"
 #include "fitters/microfacet_bound.h"
 #include "fitters/parameterization.h"
 #include "models/model_string.h"
@@ -302,6 +304,112 @@ void ExpectBoundIsTight() {
 
 TEST(MicrofacetBound, GgxBoundIsTightWithinOnePercent) { ExpectBoundIsTight<Ggx>(); }
 TEST(MicrofacetBound, BeckmannBoundIsTightWithinOnePercent) { ExpectBoundIsTight<Beckmann>(); }
+
+}  // namespace
+}  // namespace brdf
+
+namespace brdf {
+namespace {
+
+// Chi-square test of a lobe sampler and its pdf, in the manner of pbrt-v4's bsdfs_test.cpp:
+// directions drawn by SampleStrategy (what `brdf energy --method importance` and the preview
+// renderer draw: GGX's visible normals, Beckmann's D cos(theta_h)) are binned over the
+// hemisphere in (cos theta, phi); each bin's expected count is StrategyPdf integrated over the
+// bin (Simpson's rule, 5 x 5 points); draws below the horizon form one more bin, expected to
+// hold what the pdf leaves outside the hemisphere. Bins expecting fewer than 5 are pooled. The
+// statistic is turned into a z-score by the Wilson-Hilferty cube-root approximation.
+double SamplerChiSquareZ(const LobeCoordinates& lobe, const Vec3& wo, int samples) {
+  constexpr int kCosBins = 40, kPhiBins = 80;
+  std::vector<double> observed(kCosBins * kPhiBins + 1, 0.0);
+  RandomStream random(11, 0);
+  for (int k = 0; k < samples; ++k) {
+    const Vec3 wi = SampleStrategy(lobe, wo, random.Uniform2D());
+    if (!(wi.z() > 0)) {
+      observed.back() += 1;
+      continue;
+    }
+    const int i = std::min(kCosBins - 1, static_cast<int>(wi.z() * kCosBins));
+    double phi = std::atan2(wi.y(), wi.x());
+    if (phi < 0) phi += 2 * kPi;
+    const int j = std::min(kPhiBins - 1, static_cast<int>(phi / (2 * kPi) * kPhiBins));
+    observed[i * kPhiBins + j] += 1;
+  }
+  std::vector<double> expected(observed.size(), 0.0);
+  const double simpson[5] = {1, 4, 2, 4, 1};
+  double inside = 0;
+  for (int i = 0; i < kCosBins; ++i) {
+    for (int j = 0; j < kPhiBins; ++j) {
+      const double z0 = double(i) / kCosBins, phi0 = 2 * kPi * j / kPhiBins;
+      const double dz = 1.0 / kCosBins, dphi = 2 * kPi / kPhiBins;
+      double integral = 0;
+      for (int a = 0; a < 5; ++a) {
+        for (int b = 0; b < 5; ++b) {
+          const double z = z0 + dz * a / 4, phi = phi0 + dphi * b / 4;
+          const double r = std::sqrt(std::max(0.0, 1 - z * z));
+          const Vec3 wi(r * std::cos(phi), r * std::sin(phi), z);
+          integral += simpson[a] * simpson[b] * StrategyPdf(lobe, wo, wi);
+        }
+      }
+      integral *= dz * dphi / 144.0;  // (1/12)^2 of Simpson's 4-panel weights
+      expected[i * kPhiBins + j] = integral * samples;
+      inside += integral;
+    }
+  }
+  expected.back() = std::max(0.0, 1.0 - inside) * samples;
+  double chi_square = 0, pooled_observed = 0, pooled_expected = 0;
+  int bins = 0;
+  for (size_t k = 0; k < observed.size(); ++k) {
+    if (expected[k] < 5) {
+      pooled_observed += observed[k];
+      pooled_expected += expected[k];
+      continue;
+    }
+    chi_square += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
+    ++bins;
+  }
+  if (pooled_expected >= 5) {
+    chi_square +=
+        (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
+    ++bins;
+  }
+  const double dof = bins - 1;
+  return (std::cbrt(chi_square / dof) - (1 - 2 / (9 * dof))) / std::sqrt(2 / (9 * dof));
+}
+
+TEST(MicrofacetSampling, SamplersMatchTheirPdfsByChiSquare) {
+  for (const char* name : {"ggx", "beckmann"}) {
+    for (double alpha : {0.1, 0.3, 0.7}) {
+      const Model model =
+          ParseModel(std::string(name) + ":rho_d=0:f0=1:alpha=" + std::to_string(alpha));
+      const LobeCoordinates lobe = model.Lobe();
+      for (double theta_deg : {0.0, 35.0, 75.0}) {
+        const Vec3 wo = SphericalDirection(DegToRad(theta_deg), 0.3);
+        // p < 1e-4 under the null hypothesis: z > 3.7.
+        EXPECT_LT(SamplerChiSquareZ(lobe, wo, 200000), 3.7)
+            << name << " alpha " << alpha << " theta_o " << theta_deg;
+      }
+    }
+  }
+}
+
+// GGX's visible-normal density integrates to 1 over the half vectors and makes the importance
+// estimate of the lobe's albedo agree with the quadrature.
+TEST(MicrofacetSampling, VisibleNormalImportanceAgreesWithQuadrature) {
+  const Model model = ParseModel("ggx:rho_d=0.2:f0=0.04,0.5,1:alpha=0.2");
+  for (double theta_deg : {0.0, 45.0, 80.0}) {
+    AlbedoOptions importance;
+    importance.method = AlbedoMethod::kImportance;
+    importance.samples = 200000;
+    const AlbedoEstimate sampled =
+        ModelDirectionalAlbedo(model, DegToRad(theta_deg), importance, 3);
+    const AlbedoEstimate quadrature =
+        ModelDirectionalAlbedo(model, DegToRad(theta_deg), AlbedoOptions{});
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(sampled.albedo[c], quadrature.albedo[c], 4 * sampled.error[c] + 1e-6)
+          << theta_deg << " channel " << c;
+    }
+  }
+}
 
 }  // namespace
 }  // namespace brdf

@@ -21,6 +21,13 @@ Vec3 SampleLobeAboutZ(const LobeCoordinates& lobe, const Point2& u) {
   return Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
 }
 
+// Whether the lobe draws the half vector from the normals visible from wo (models/lobe.h);
+// only for wo above the surface, where they are defined.
+bool VisibleNormals(const LobeCoordinates& lobe, const Vec3& wo) {
+  return lobe.distribution != nullptr && lobe.distribution->sample_visible != nullptr &&
+         wo.z() > 0.0;
+}
+
 }  // namespace
 
 Vec3 SampleStrategy(const LobeCoordinates& coordinates, const Vec3& wo, const Point2& u) {
@@ -32,6 +39,10 @@ Vec3 SampleStrategy(const LobeCoordinates& coordinates, const Vec3& wo, const Po
       return Frame::FromZ(MirrorDirection(wo))
           .FromLocal(SamplePowerCosineLobe(u, coordinates.exponent));
     case LobeFrame::kHalfVector:
+      if (VisibleNormals(coordinates, wo)) {
+        return Reflect(
+            wo, coordinates.distribution->sample_visible(wo, u.x(), u.y(), coordinates.exponent));
+      }
       return Reflect(wo, SampleLobeAboutZ(coordinates, u));
   }
   return Vec3::UnitZ();
@@ -48,8 +59,11 @@ double StrategyPdf(const LobeCoordinates& coordinates, const Vec3& wo, const Vec
       const Vec3 sum = wi + wo;
       if (sum.squaredNorm() <= 0.0) return 0.0;
       const Vec3 half_vector = sum.normalized();
-      return HalfVectorToIncidentPdf(LobeDensity(coordinates, CosTheta(half_vector)),
-                                     wo.dot(half_vector));
+      const double density =
+          VisibleNormals(coordinates, wo)
+              ? coordinates.distribution->visible_density(wo, half_vector, coordinates.exponent)
+              : LobeDensity(coordinates, CosTheta(half_vector));
+      return HalfVectorToIncidentPdf(density, wo.dot(half_vector));
     }
   }
   return 0.0;

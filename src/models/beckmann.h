@@ -53,7 +53,9 @@ struct Beckmann : MicrofacetModel<Beckmann> {
     return 1.0 / std::sqrt(1.0 - alpha * alpha * std::log(u));
   }
   static double Density(double cos_h, double alpha) { return D(cos_h, alpha) * cos_h; }
-  static constexpr LobeDistribution kLobeDistribution = {"beckmann", MassBeyond, CosAt, Density};
+  // The samplers draw h from D cos(theta_h) (Walter et al. 2007, eqs. 28-29, inverted above).
+  static constexpr LobeDistribution kLobeDistribution = {"beckmann", MassBeyond, CosAt,
+                                                         Density,    nullptr,    nullptr};
 
   // exp(−tan²theta/α²) ≈ exp(−theta²/α²) = cos^e(theta) near the peak for e = 2/α².
   static double AlphaEquivalentExponent(double alpha) { return 2.0 / (alpha * alpha); }

@@ -27,11 +27,18 @@ enum class LobeFrame {
 //   density(cos beta) = p.
 // The power cosine (e+1)/(2π) cos^e is the default; a microfacet model supplies D(h) cos(theta_h),
 // whose integral over the hemisphere is 1 (the normal distribution's own normalization).
+//
+// A half-vector distribution may also sample the normals visible from wo (wo-dependent, so
+// the samplers use it but the quadrature's warp does not): sample_visible draws h from
+// u in [0, 1)^2, visible_density is that density of h in solid angle. Both null: the samplers
+// draw h from `density`.
 struct LobeDistribution {
   const char* name;
   double (*mass_beyond)(double cos_beta, double shape);
   double (*cos_at)(double u, double shape);
   double (*density)(double cos_beta, double shape);
+  Vec3 (*sample_visible)(const Vec3& wo, double u0, double u1, double shape) = nullptr;
+  double (*visible_density)(const Vec3& wo, const Vec3& h, double shape) = nullptr;
 };
 
 // A lobe frame and its density (the power cosine of core/sampling.h unless a distribution is
