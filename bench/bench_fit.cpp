@@ -3,10 +3,11 @@
 //   case,samples,loss,max_samples,median_s,max_relative_error,converged,is_default
 // Cases: "merl" fits a full 90x90x180 MERL table tabulated from an analytic blinn-phong (the
 // cells above the horizon); "random" fits N uniformly random (wi, wo) pairs, as libbsdf's
-// lbfit draws 100,000 random samples. Both are noise-free. The sweeps that follow add
-// Gaussian noise, so their error measures what the sample count and the loss buy: "noisy",
-// 1% of each value (multiplicative, as from a calibration or a gain), and "additive", 1% of the
-// mean value (as from a detector's read noise). `is_default` is 1 when the loss and the
+// lbfit draws 100,000 random samples. Both are noise-free; "merl-ggx", "random-ggx",
+// "merl-beckmann" and "random-beckmann" are the same for the microfacet rungs. The sweeps that
+// follow add Gaussian noise, so their error measures what the sample count and the loss buy:
+// "noisy", 1% of each value (multiplicative, as from a calibration or a gain), and "additive", 1%
+// of the mean value (as from a detector's read noise). `is_default` is 1 when the loss and the
 // subsample size are FitOptions' defaults (what `brdf fit` runs).
 #include <algorithm>
 #include <chrono>
@@ -26,6 +27,9 @@ namespace brdf {
 namespace {
 
 const char* kTruth = "blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:m=300";
+// The microfacet rungs on the same two tables (a glossy dielectric coat over a coloured base).
+const char* kMicrofacetTruths[] = {"ggx:rho_d=0.3,0.2,0.1:f0=0.04,0.05,0.06:alpha=0.15",
+                                   "beckmann:rho_d=0.3,0.2,0.1:f0=0.04,0.05,0.06:alpha=0.15"};
 
 Measurement MerlMeasurement(const Model& truth) {
   const MerlTable table =
@@ -126,6 +130,16 @@ int main(int argc, char** argv) {
   Run("merl", MerlMeasurement(truth), truth, defaults.loss, defaults.max_samples, repetitions);
   Run("random", RandomMeasurement(truth, 100000, 11, 0.0), truth, defaults.loss,
       defaults.max_samples, repetitions);
+  // The same cases for ggx and beckmann, in the same run: their time next to blinn-phong's.
+  for (const char* text : kMicrofacetTruths) {
+    const Model microfacet = ParseModel(text);
+    const std::string merl = "merl-" + microfacet.name();
+    const std::string random = "random-" + microfacet.name();
+    Run(merl.c_str(), MerlMeasurement(microfacet), microfacet, defaults.loss, defaults.max_samples,
+        repetitions);
+    Run(random.c_str(), RandomMeasurement(microfacet, 100000, 11, 0.0), microfacet, defaults.loss,
+        defaults.max_samples, repetitions);
+  }
   // Time and error against sample count, per loss, on data with 1% noise, without
   // subsampling (every solve on all samples) and with the default subsample + polish.
   // --quick keeps the two smallest counts and one run each: a smoke test of the sweep.

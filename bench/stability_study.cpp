@@ -85,7 +85,7 @@ std::string FitColumns(const FitResult& fit, const Model& truth, const Measureme
   const double m_stderr = fit.stderr_values[models::LobedSlots::kExponent];
   const fitters::PreparedSamples prepared = fitters::PrepareSamples(data, fitters::Loss::kL2);
   const fitters::LobeResolution lobe =
-      fitters::ResolveLobe(fitters::LobeKindOf(truth.name()), m_true, prepared.samples);
+      fitters::ResolveLobe(truth.Lobe().frame, m_true, prepared.samples);
   char line[512];
   std::snprintf(line, sizeof(line), "%.4g,%.4g,%.4g,%.6g,%.4g,%.4g,%d,%.5g,%zu,%s",
                 MaxRelativeError(fit.model, truth, "rho_d"),

@@ -66,9 +66,9 @@ std::string Format(const char* format, double value) {
 }
 
 // x = -e ln cos(offset) of one sample: 0 at the lobe's centre, infinity where the lobe is 0.
-double LobeExponentTerm(LobeKind kind, double exponent, const Vec3& wi, const Vec3& wo) {
+double LobeExponentTerm(LobeFrame frame, double exponent, const Vec3& wi, const Vec3& wo) {
   double cos_offset;
-  if (kind == LobeKind::kPhong) {
+  if (frame == LobeFrame::kMirror) {
     cos_offset = MirrorDirection(wi).dot(wo);
   } else {
     cos_offset = (wi + wo).normalized().z();
@@ -77,62 +77,72 @@ double LobeExponentTerm(LobeKind kind, double exponent, const Vec3& wi, const Ve
   return -exponent * std::log(std::min(cos_offset, 1.0));
 }
 
-const char* OffsetName(LobeKind kind) {
-  return kind == LobeKind::kPhong ? "angle from the mirror direction" : "half-vector angle";
+const char* OffsetName(LobeFrame frame) {
+  return frame == LobeFrame::kMirror ? "angle from the mirror direction" : "half-vector angle";
 }
 
 // The diffuse part cannot be unresolved; only lobed fits whose lobe is still there are checked.
-bool LobeVanished(const FitResult& result, LobeKind kind) {
-  const double exponent = result.model.params()[models::LobedSlots::kExponent];
-  for (int c = 0; c < 3; ++c) {
-    if (LobeAlbedoAtNormal(kind, exponent) * result.model.Param("rho_s", c) >= kVanishedLobeShare) {
-      return false;
-    }
-  }
-  return true;
+// A lobe's weight is its share of the albedo (power cosine: A(e) rho_s; a microfacet lobe keeps
+// Schlick's grazing rise even at f0 = 0, so it never vanishes).
+bool LobeVanished(const FitResult& result) {
+  return !(result.model.LobeWeight() >= kVanishedLobeShare).any();
 }
 
-void CheckLobeResolution(const PreparedSamples& prepared, LobeKind kind, FitResult* result) {
-  const double exponent = result->model.params()[models::LobedSlots::kExponent];
-  const LobeResolution lobe = ResolveLobe(kind, exponent, prepared.samples);
+// "exponent n = 1e4" or "roughness alpha = 0.05": the lobe's width parameter as fitted.
+std::string ShapeText(const Model& model) {
+  const ParamInfo& shape = model.info().shape_param();
+  const char* what =
+      model.info().family == models::ModelFamily::kMicrofacet ? "roughness " : "exponent ";
+  return what + shape.name + " = " + Format("%.4g", model.params()[shape.slot]);
+}
+
+void CheckLobeResolution(const PreparedSamples& prepared, FitResult* result) {
+  const Model& model = result->model;
+  const double exponent = model.info().equivalent_exponent(model.params().data());
+  const LobeFrame frame = model.Lobe().frame;
+  const LobeResolution lobe = ResolveLobe(frame, exponent, prepared.samples);
   if (lobe.flank_samples > 0) return;
   std::string nearest = std::isfinite(lobe.nearest_off_peak_deg)
                             ? Format("%.3g", lobe.nearest_off_peak_deg) + " deg"
                             : std::string("nowhere");
   result->warnings.push_back(
-      "lobe narrower than the sample spacing: the fitted lobe (exponent " +
-      Format("%.4g", exponent) + ", half-width " + Format("%.3g", lobe.half_width_deg) +
-      " deg in the " + OffsetName(kind) + ") has no sample on its flank (" +
-      Format("%.3g", lobe.half_width_deg / 2) + " to " + Format("%.3g", 3 * lobe.half_width_deg) +
-      " deg); the nearest sample off its peak is " + nearest + " away, so the data bound the " +
-      "exponent from below but do not determine it");
+      "lobe narrower than the sample spacing: the fitted lobe (" + ShapeText(model) +
+      ", half-width " + Format("%.3g", lobe.half_width_deg) + " deg in the " + OffsetName(frame) +
+      ") has no sample on its flank (" + Format("%.3g", lobe.half_width_deg / 2) + " to " +
+      Format("%.3g", 3 * lobe.half_width_deg) + " deg); the nearest sample off its peak is " +
+      nearest + " away, so the data bound the " +
+      "lobe's sharpness from below but do not determine it");
 }
 
-void CheckIdentifiability(LobeKind kind, FitResult* result) {
+void CheckIdentifiability(FitResult* result) {
   const Model& model = result->model;
   if (!result->stderr_available) {
     result->warnings.push_back("not identifiable: " + result->stderr_note);
   }
-  if (kind != LobeKind::kNone) {
-    if (LobeVanished(*result, kind)) {
+  if (model.info().has_lobe()) {
+    if (LobeVanished(*result)) {
       result->warnings.push_back(
           "not identifiable: the lobe vanished (rho_s = 0 in every channel), so its "
           "exponent is arbitrary; the data show no lobe (try --model lambert)");
       return;  // the exponent's box and error mean nothing without a lobe
     }
-    const double exponent = model.params()[models::LobedSlots::kExponent];
-    std::string name = "exponent";
-    for (const ParamInfo& param : model.info().params) {
-      if (param.slot == models::LobedSlots::kExponent) name = param.name;
-    }
-    if (exponent >= FitVariables::kMaxExponent * (1 - 1e-3)) {
-      result->warnings.push_back("not identifiable: the exponent " + name +
-                                 " sits at the fitter's upper bound 1e6; the data ask for a "
-                                 "lobe at least this sharp and cannot say how much sharper");
-    } else if (exponent <= FitVariables::kMinExponent * (1 + 1e-3)) {
-      result->warnings.push_back("not identifiable: the exponent " + name +
-                                 " sits at the fitter's lower bound 1; the data ask for a "
-                                 "broader lobe than the model has");
+    // The box of the width parameter: an exponent in [1, 1e6], or a roughness alpha in
+    // [1e-3, 1.5] (parameterization.h). Sharper means a larger exponent but a smaller alpha.
+    const bool microfacet = model.info().family == models::ModelFamily::kMicrofacet;
+    const double value = model.params()[model.info().shape_slot];
+    const double sharpest = microfacet ? FitVariables::kMinAlpha : FitVariables::kMaxExponent;
+    const double broadest = microfacet ? FitVariables::kMaxAlpha : FitVariables::kMinExponent;
+    const std::string name = ShapeText(model).substr(0, ShapeText(model).find(" = "));
+    auto at = [&](double bound) { return std::abs(value - bound) <= 1e-3 * bound; };
+    if (at(sharpest)) {
+      result->warnings.push_back("not identifiable: the " + name + " sits at the fitter's " +
+                                 (microfacet ? "lower bound 0.001" : "upper bound 1e6") +
+                                 "; the data ask for a lobe at least this sharp and cannot say "
+                                 "how much sharper");
+    } else if (at(broadest)) {
+      result->warnings.push_back("not identifiable: the " + name + " sits at the fitter's " +
+                                 (microfacet ? "upper bound 1.5" : "lower bound 1") +
+                                 "; the data ask for a broader lobe than the model has");
     }
   }
   if (!result->stderr_available) return;
@@ -209,13 +219,14 @@ void CheckResidualWarnings(const Measurement& measurement, FitResult* result) {
 
 }  // namespace
 
-LobeResolution ResolveLobe(LobeKind kind, double exponent, const std::vector<FitSample>& samples) {
+LobeResolution ResolveLobe(LobeFrame frame, double exponent,
+                           const std::vector<FitSample>& samples) {
   LobeResolution lobe;
   lobe.half_width_deg = std::acos(std::exp(-0.5 / exponent)) * kRadToDeg;
   lobe.nearest_off_peak_deg = std::numeric_limits<double>::infinity();
-  if (kind == LobeKind::kNone) return lobe;
+  if (frame == LobeFrame::kNormal) return lobe;
   for (const FitSample& sample : samples) {
-    const double x = LobeExponentTerm(kind, exponent, sample.wi, sample.wo);
+    const double x = LobeExponentTerm(frame, exponent, sample.wi, sample.wo);
     if (x < kFlankStart) {
       ++lobe.peak_samples;
       continue;
@@ -307,16 +318,15 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
 
 void AppendFitDiagnostics(const Measurement& measurement, const PreparedSamples& prepared,
                           FitResult* result) {
-  const LobeKind kind = LobeKindOf(result->model.name());
   if (!result->converged) {
     result->warnings.push_back(
         "not converged: the final solve stopped without meeting its "
         "tolerances (" +
         result->termination + "); the parameters are the best found, not an optimum");
   }
-  CheckIdentifiability(kind, result);
-  if (kind != LobeKind::kNone && !LobeVanished(*result, kind)) {
-    CheckLobeResolution(prepared, kind, result);
+  CheckIdentifiability(result);
+  if (result->model.info().has_lobe() && !LobeVanished(*result)) {
+    CheckLobeResolution(prepared, result);
   }
   CheckCoverage(measurement, result);
   CheckResidualWarnings(measurement, result);

@@ -18,15 +18,15 @@
 #include <vector>
 
 #include "core/measurement.h"
-#include "fitters/energy_bound.h"
 #include "fitters/fit.h"
 #include "fitters/fit_samples.h"
 
 namespace brdf::fitters {
 
-// How well the samples resolve a lobe of the given kind and exponent. The lobe's offset is the
-// angle alpha between wo and the mirror direction of wi (phong) or the half-vector angle
-// theta_h (Blinn family); its shape is cos^e(offset) ~ exp(-e offset^2 / 2), a Gaussian of
+// How well the samples resolve a lobe in the given frame with the given (power-cosine, or
+// equivalent: ModelInfo::equivalent_exponent) exponent. The lobe's offset is the angle between
+// wo and the mirror direction of wi (phong) or the half-vector angle theta_h (Blinn family,
+// microfacet models); its shape is cos^e(offset) ~ exp(-e offset^2 / 2), a Gaussian of
 // half-width sigma = 1/sqrt(e) radians in the offset.
 struct LobeResolution {
   double half_width_deg = 0;  // sigma = acos(exp(-1/(2e))) ~ 1/sqrt(e), in degrees
@@ -36,7 +36,7 @@ struct LobeResolution {
   // peak); infinity when there is none.
   double nearest_off_peak_deg = 0;
 };
-LobeResolution ResolveLobe(LobeKind kind, double exponent, const std::vector<FitSample>& samples);
+LobeResolution ResolveLobe(LobeFrame frame, double exponent, const std::vector<FitSample>& samples);
 
 // Statistics of the fitted model's residuals against the measurement's own values.
 struct ResidualCheck {

@@ -1,17 +1,23 @@
 #include "fitters/energy_bound.h"
 
-#include "core/errors.h"
-#include "models/registry.h"
-
 namespace brdf::fitters {
 
-LobeKind LobeKindOf(std::string_view model_name) {
-  if (model_name == models::Lambert::kName) return LobeKind::kNone;
-  if (model_name == models::Phong::kName) return LobeKind::kPhong;
-  if (model_name == models::BlinnPhong::kName) return LobeKind::kBlinnPhong;
-  if (model_name == models::BlinnPhongExact::kName) return LobeKind::kBlinnPhongExact;
-  FindModel(model_name);  // throws the descriptive UsageError
-  throw UsageError("model '" + std::string(model_name) + "' cannot be fitted");
+Rgb EnergyBound(const Model& model) {
+  return VisitModelType(model.name(), [&](auto model_type) {
+    return EnergyBound<decltype(model_type)>(model.params().data());
+  });
+}
+
+const char* EnergyBoundFormula(models::ModelFamily family) {
+  switch (family) {
+    case models::ModelFamily::kDiffuse:
+      return "rho_d";
+    case models::ModelFamily::kPowerCosine:
+      return "rho_d + A(m) rho_s";
+    case models::ModelFamily::kMicrofacet:
+      return "rho_d + max over theta of E(theta; alpha, f0)";
+  }
+  return "?";
 }
 
 }  // namespace brdf::fitters

@@ -33,6 +33,9 @@ struct FitOptions {
   // Multi-start: exponents tried from the data-driven guess of rho_d and rho_s; log-spaced
   // over the range real materials span (~1 to ~1e5).
   std::vector<double> start_exponents = {2, 8, 32, 128, 512, 2048, 8192, 32768};
+  // Microfacet models: alphas tried, each with f0 from the data's peak and with f0 = 0.04 (a
+  // dielectric coat); log-spaced from a near-mirror to a matte-like roughness.
+  std::vector<double> start_alphas = {0.02, 0.05, 0.12, 0.3, 0.7};
   int start_iterations = 30;  // iterations per start (at most max_iterations)
 
   // Throws UsageError naming the bad field.
@@ -52,7 +55,7 @@ struct EnergyCheck {
   Rgb max_albedo = Rgb::Zero();    // over incidence angles, per channel
   Rgb albedo_error = Rgb::Zero();  // the integrator's error estimate at the maximum
   std::array<double, 3> theta_deg_at_max = {0, 0, 0};
-  Rgb bound = Rgb::Zero();  // rho_d + A(m) rho_s, <= 1 by construction
+  Rgb bound = Rgb::Zero();  // rho_d + the lobe's largest albedo (energy_bound.h), <= 1
   bool conserving = true;
   std::string method;
 };
@@ -83,7 +86,15 @@ struct FitResult {
   std::string Summary() const;
 };
 
+// The whole fit: PrepareSamples, FitPreparedSamples, FinishFit.
 FitResult FitModel(const Measurement& measurement, const std::string& model_name,
                    const FitOptions& options);
+
+// The fit alone, on PrepareSamples(measurement, options.loss): parameters, standard errors,
+// metrics and BIC, without the energy check and the diagnostics.
+FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string& model_name,
+                             const FitOptions& options);
+// The energy check (energy_check.h) and the warnings (diagnostics.h) of a fit.
+void FinishFit(const Measurement& measurement, const PreparedSamples& prepared, FitResult* result);
 
 }  // namespace brdf::fitters

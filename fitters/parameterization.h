@@ -1,17 +1,25 @@
 // How the fitter's free variables map to model parameters (DESIGN §6).
 //
-// Ceres offers box bounds only, but the energy bound rho_d + A(m) rho_s <= 1 (energy_bound.h)
-// couples parameters. So the fitter works in variables for which every value is a physically
-// valid, energy-conserving material, and Ceres never has to enforce the constraint:
+// Ceres offers box bounds only, but the energy bound (energy_bound.h) couples parameters. So the
+// fitter works in variables for which every value is a physically valid, energy-conserving
+// material, and Ceres never has to enforce the constraint. Three parameter blocks: d[3], s[1 or
+// 3] and shape[1].
+//
+// Power-cosine models (rho_d + A(m) rho_s <= 1):
 //   q_c   = logistic(s_c)         fraction of the albedo budget taken by the lobe, (0, 1)
 //   rho_s = q_c / A(m)            so A(m) rho_s = q_c < 1
 //   rho_d = (1 - q_c) logistic(d_c)   so rho_d + A(m) rho_s < 1
-//   m     = exp(log_m)            the exponent in log space, bounded to [1, 1e6]
-// The logistic ("log-odds") variables keep rho_d and rho_s positive as log space would, and
-// bounded as the energy budget requires. For lambert only rho_d_c = logistic(d_c) remains.
-// `grey_specular` shares one s for all channels (one rho_s, as for dielectric coatings).
+//   m     = exp(shape)            the exponent in log space, bounded to [1, 1e6]
+// Microfacet models (rho_d + max_theta E(theta; alpha, f0) <= 1):
+//   f0    = logistic(s_c)         in (0, 1), as Fresnel reflectance must be
+//   alpha = exp(shape)            bounded to the tabulated range [1e-3, 1.5]
+//   rho_d = (1 - E_max(alpha, f0_c)) logistic(d_c)   the budget the lobe leaves
+// The logistic ("log-odds") variables keep albedos positive as log space would, and bounded as
+// the energy budget requires. For lambert only rho_d_c = logistic(d_c) remains. `grey_specular`
+// shares one s for all channels (one rho_s or f0, as for dielectric coatings).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "fitters/energy_bound.h"
@@ -19,12 +27,30 @@
 
 namespace brdf::fitters {
 
-// Slots of the fitter's variables; parameter blocks are d[3], s[1 or 3], log_m[1].
 struct FitVariables {
   static constexpr double kLogisticBound = 40.0;  // logistic(-40) = 4e-18: "zero" is reachable
   static constexpr double kMinExponent = 1.0;
   static constexpr double kMaxExponent = 1e6;
+  static constexpr double kMinAlpha = MicrofacetAlbedoTable::kMinAlpha;
+  static constexpr double kMaxAlpha = MicrofacetAlbedoTable::kMaxAlpha;
+  // d[3] + s[3] + shape[1]: the most variables any model has (the Jet size of the covariance).
+  static constexpr int kMaxVariables = 7;
 };
+
+template <typename M>
+constexpr bool kHasLobe = M::kFamily != models::ModelFamily::kDiffuse;
+
+// The box of the shape variable (log exponent or log alpha).
+template <typename M>
+double ShapeLowerBound() {
+  return M::kFamily == models::ModelFamily::kMicrofacet ? std::log(FitVariables::kMinAlpha)
+                                                        : std::log(FitVariables::kMinExponent);
+}
+template <typename M>
+double ShapeUpperBound() {
+  return M::kFamily == models::ModelFamily::kMicrofacet ? std::log(FitVariables::kMaxAlpha)
+                                                        : std::log(FitVariables::kMaxExponent);
+}
 
 template <typename T>
 T Logistic(const T& x) {
@@ -34,23 +60,33 @@ T Logistic(const T& x) {
 
 inline double Logit(double p) { return std::log(p / (1.0 - p)); }
 
-// Fills params[LobedSlots] (or params[kRhoD..] for lambert) from the fitter's variables.
-template <typename T>
-void VariablesToParams(LobeKind kind, bool grey_specular, const T* d, const T* s, const T* log_m,
-                       T* params) {
+// Fills model M's params from the fitter's variables (s and shape unused for lambert).
+template <typename M, typename T>
+void VariablesToParams(bool grey_specular, const T* d, const T* s, const T* shape, T* params) {
+  using models::ModelFamily;
   using std::exp;
-  if (kind == LobeKind::kNone) {
-    for (int c = 0; c < 3; ++c) params[models::LobedSlots::kRhoD + c] = Logistic(d[c]);
-    return;
+  if constexpr (M::kFamily == ModelFamily::kDiffuse) {
+    for (int c = 0; c < 3; ++c) params[M::kRhoD + c] = Logistic(d[c]);
+  } else if constexpr (M::kFamily == ModelFamily::kPowerCosine) {
+    const T exponent = exp(shape[0]);
+    const T lobe_albedo = M::NormalLobeAlbedo(exponent);
+    for (int c = 0; c < 3; ++c) {
+      const T q = Logistic(s[grey_specular ? 0 : c]);
+      params[M::kRhoS + c] = q / lobe_albedo;
+      params[M::kRhoD + c] = (T(1) - q) * Logistic(d[c]);
+    }
+    params[M::kExponent] = exponent;
+  } else {
+    const MicrofacetAlbedoTable& table = AlbedoTableOf<M>();
+    for (int c = 0; c < 3; ++c) {
+      const T f0 = Logistic(s[grey_specular ? 0 : c]);
+      T budget = T(1) - table.MaxLobeAlbedo(shape[0], f0);
+      if (budget < T(0)) budget = T(0);  // a near-perfect mirror leaves nothing for rho_d
+      params[M::kF0 + c] = f0;
+      params[M::kRhoD + c] = budget * Logistic(d[c]);
+    }
+    params[M::kAlpha] = exp(shape[0]);
   }
-  const T exponent = exp(log_m[0]);
-  const T lobe_albedo = LobeAlbedoAtNormal(kind, exponent);
-  for (int c = 0; c < 3; ++c) {
-    const T q = Logistic(s[grey_specular ? 0 : c]);
-    params[models::LobedSlots::kRhoS + c] = q / lobe_albedo;
-    params[models::LobedSlots::kRhoD + c] = (T(1) - q) * Logistic(d[c]);
-  }
-  params[models::LobedSlots::kExponent] = exponent;
 }
 
 }  // namespace brdf::fitters

@@ -15,8 +15,8 @@ namespace brdf::fitters {
 template <typename ModelType>
 class BatchResidual {
  public:
-  BatchResidual(LobeKind kind, bool grey_specular, Loss loss, const FitSample* samples, int count)
-      : kind_(kind), grey_specular_(grey_specular), loss_(loss), samples_(samples), count_(count) {}
+  BatchResidual(bool grey_specular, Loss loss, const FitSample* samples, int count)
+      : grey_specular_(grey_specular), loss_(loss), samples_(samples), count_(count) {}
 
   int num_residuals() const { return 3 * count_; }
 
@@ -24,15 +24,15 @@ class BatchResidual {
   template <typename T>
   bool operator()(const T* d, T* residuals) const {
     T params[ModelType::kNumParams];
-    VariablesToParams<T>(kind_, grey_specular_, d, nullptr, nullptr, params);
+    VariablesToParams<ModelType, T>(grey_specular_, d, nullptr, nullptr, params);
     return Residuals(params, residuals);
   }
 
-  // Lobed models: d[3], s[1 or 3], log_m[1].
+  // Lobed models: d[3], s[1 or 3], shape[1] (parameterization.h).
   template <typename T>
-  bool operator()(const T* d, const T* s, const T* log_m, T* residuals) const {
+  bool operator()(const T* d, const T* s, const T* shape, T* residuals) const {
     T params[ModelType::kNumParams];
-    VariablesToParams(kind_, grey_specular_, d, s, log_m, params);
+    VariablesToParams<ModelType, T>(grey_specular_, d, s, shape, params);
     return Residuals(params, residuals);
   }
 
@@ -57,7 +57,6 @@ class BatchResidual {
     return true;
   }
 
-  LobeKind kind_;
   bool grey_specular_;
   Loss loss_;
   const FitSample* samples_;

@@ -1,49 +1,83 @@
 #include "fitters/select.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
+#include "fitters/fit_samples.h"
+
 namespace brdf::fitters {
 
 const std::vector<std::string>& AutoCandidates() {
-  static const std::vector<std::string> candidates = {"lambert", "phong", "blinn-phong",
-                                                      "blinn-phong-exact"};
+  static const std::vector<std::string> candidates = [] {
+    std::vector<std::string> names;
+    for (const ModelInfo& info : ModelRegistry()) names.push_back(info.name);
+    return names;
+  }();
   return candidates;
 }
 
 FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options,
                        Selection* selection, std::vector<FitResult>* all_fits) {
-  std::optional<FitResult> best;
-  double total_time = 0;
+  options.Validate();
+  const auto start = std::chrono::steady_clock::now();
+  const PreparedSamples prepared = PrepareSamples(measurement, options.loss);
+  std::vector<FitResult> fits;
+  size_t best = 0;
   for (const std::string& name : AutoCandidates()) {
-    FitResult fit = FitModel(measurement, name, options);
-    total_time += fit.time_s;
+    FitResult fit = FitPreparedSamples(prepared, name, options);
     selection->candidates.push_back(
         {name, fit.bic, fit.metrics.rmse, fit.free_variables, fit.converged});
-    if (all_fits != nullptr) all_fits->push_back(fit);
     // A clearly lower BIC wins; ties (to rounding) keep the earlier, simpler candidate. This
     // matters: blinn-phong and blinn-phong-exact span the same family of lobes (they differ
     // by a constant factor that rho_s absorbs), so they reach the same BIC.
-    if (!best || fit.bic < best->bic - 1e-9 * std::abs(best->bic)) best.emplace(std::move(fit));
+    fits.push_back(std::move(fit));
+    if (fits.size() > 1 && fits.back().bic < fits[best].bic - 1e-9 * std::abs(fits[best].bic)) {
+      best = fits.size() - 1;
+    }
   }
-  selection->chosen = best->model.name();
+  // The energy check and the diagnostics cost more than many fits of a small file: only the
+  // chosen fit gets them, unless the caller keeps every fit.
+  for (size_t k = 0; k < fits.size(); ++k) {
+    if (k == best || all_fits != nullptr) FinishFit(measurement, prepared, &fits[k]);
+  }
+  const FitResult& chosen = fits[best];
+  selection->chosen = chosen.model.name();
   const CandidateScore* lambert = &selection->candidates.front();
-  char reason[256];
-  if (selection->chosen == "lambert") {
+  // The simplest lobed candidate the chosen one climbed past, for the sentence.
+  const CandidateScore* power_cosine = nullptr;
+  for (const CandidateScore& candidate : selection->candidates) {
+    if (FindModel(candidate.model).family == models::ModelFamily::kPowerCosine &&
+        (power_cosine == nullptr || candidate.bic < power_cosine->bic)) {
+      power_cosine = &candidate;
+    }
+  }
+  char reason[384];
+  const models::ModelFamily family = chosen.model.info().family;
+  if (family == models::ModelFamily::kDiffuse) {
     std::snprintf(reason, sizeof(reason),
                   "lambert has the lowest BIC: no lobe lowers the error enough to pay for its "
                   "extra variables");
+  } else if (family == models::ModelFamily::kMicrofacet && power_cosine != nullptr) {
+    std::snprintf(reason, sizeof(reason),
+                  "%s has the lowest BIC (%.6g; best power-cosine lobe, %s, %.6g; lambert %.6g): "
+                  "Fresnel and masking lower the rmse from %.4g (%s) to %.4g sr^-1",
+                  selection->chosen.c_str(), chosen.bic, power_cosine->model.c_str(),
+                  power_cosine->bic, lambert->bic, power_cosine->rmse, power_cosine->model.c_str(),
+                  chosen.metrics.rmse);
   } else {
     std::snprintf(reason, sizeof(reason),
                   "%s has the lowest BIC (%.6g, lambert %.6g): the lobe lowers the rmse from "
                   "%.4g to %.4g sr^-1",
-                  selection->chosen.c_str(), best->bic, lambert->bic, lambert->rmse,
-                  best->metrics.rmse);
+                  selection->chosen.c_str(), chosen.bic, lambert->bic, lambert->rmse,
+                  chosen.metrics.rmse);
   }
   selection->reason = reason;
-  best->time_s = total_time;
-  return std::move(*best);
+  FitResult result = fits[best];
+  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (all_fits != nullptr) *all_fits = std::move(fits);
+  return result;
 }
 
 }  // namespace brdf::fitters

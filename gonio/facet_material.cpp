@@ -5,8 +5,8 @@
 
 #include "core/errors.h"
 #include "core/text.h"
-#include "gonio/fresnel.h"
 #include "gonio/sampling.h"
+#include "models/microfacet.h"
 #include "models/model_source.h"
 
 namespace brdf::gonio {
@@ -74,7 +74,7 @@ FacetMaterial FacetMaterial::Parse(const std::string& spec) {
 Rgb FacetMaterial::Fresnel(double cos_theta) const {
   Rgb reflectance;
   for (int c = 0; c < 3; ++c)
-    reflectance[c] = FresnelReflectance(cos_theta, ior_[c], extinction_[c]);
+    reflectance[c] = models::FresnelReflectance(cos_theta, ior_[c], extinction_[c]);
   return reflectance;
 }
 

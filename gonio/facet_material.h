@@ -2,7 +2,8 @@
 //   a model string or FIT.json (e.g. `lambert:rho_d=0.8`) — the facet scatters diffusely: a
 //     cosine-weighted direction with weight f·π (exactly rho_d for lambert);
 //   `conductor:ior=N:k=K` — a smooth metal, mirror reflection weighted by the exact complex
-//     Fresnel reflectance (fresnel.h); N and K are one value or three (RGB);
+//     Fresnel reflectance (models/microfacet.h, shared with the microfacet models); N and K are one
+//     value or three (RGB);
 //   `dielectric:ior=N` — a smooth opaque dielectric (e.g. a black glossy paint): mirror
 //     reflection weighted by the exact Fresnel reflectance; the refracted part is absorbed.
 #pragma once

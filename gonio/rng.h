@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "core/angles.h"
+#include "core/splitmix64.h"
 
 namespace brdf::gonio {
 
@@ -21,21 +22,19 @@ enum class Stream : uint64_t {
   kHeightField = 6,
 };
 
-// SplitMix64 (Steele, Lea & Flood, "Fast splittable pseudorandom number generators", OOPSLA
-// 2014): a 64-bit state advanced by a Weyl sequence and a strong output mix. Small, fast and
-// good enough for Monte Carlo; its value is that any 64-bit seed starts an independent stream.
+// The shared SplitMix64 (core/splitmix64.h), seeded by (seed, purpose, index): any 64-bit seed
+// starts an independent stream; normal and Poisson draws on top of it.
 class Rng {
  public:
-  explicit Rng(uint64_t seed) : state_(seed) {}
+  explicit Rng(uint64_t seed) : generator_(seed) {}
   Rng(uint64_t seed, Stream stream, uint64_t index)
-      : state_(Mix(Mix(seed ^ (static_cast<uint64_t>(stream) * 0xd1b54a32d192ed03ULL)) + index)) {}
+      : generator_(SplitMix64Mix(
+            SplitMix64Mix(seed ^ (static_cast<uint64_t>(stream) * 0xd1b54a32d192ed03ULL)) +
+            index)) {}
 
-  uint64_t NextU64() {
-    state_ += 0x9e3779b97f4a7c15ULL;
-    return Mix(state_);
-  }
+  uint64_t NextU64() { return generator_.Next(); }
   // Uniform in [0, 1) with 53 random bits.
-  double Uniform() { return static_cast<double>(NextU64() >> 11) * 0x1.0p-53; }
+  double Uniform() { return generator_.Uniform(); }
   // Standard normal by the Box-Muller transform; the second of each pair is kept for the next
   // call (half the logarithms and square roots).
   double Normal() {
@@ -66,12 +65,7 @@ class Rng {
   }
 
  private:
-  static uint64_t Mix(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-  }
-  uint64_t state_;
+  SplitMix64 generator_;
   double spare_ = 0;
   bool has_spare_ = false;
 };

@@ -9,6 +9,7 @@
 #include "browser_check.h"
 #include "cli/demo.h"
 #include "gonio/schedule.h"
+#include "models/registry.h"
 #include "test_util.h"
 
 namespace brdf {
@@ -139,11 +140,11 @@ TEST(Cli, QuickDemoSimulatesFitsAndReports) {
   // data/ holds 4 ASTM, 5 pbrt-v2, 1 Zemax, 7 RGL-EPFL and 2 ALTA files.
   EXPECT_EQ(json["measurements"].size(), 19u);
   for (const nlohmann::json& row : json["measurements"]) EXPECT_GT(row["samples"], 0);
-  // Three simulated samples and two real files in --quick, each fitted with four models.
+  // Three simulated samples and two real files in --quick, each fitted with every model.
   ASSERT_EQ(json["datasets"].size(), 5u);
   for (const nlohmann::json& dataset : json["datasets"]) {
     EXPECT_TRUE(dataset["conserving"].get<bool>()) << dataset["name"];
-    ASSERT_EQ(dataset["fits"].size(), 4u);
+    ASSERT_EQ(dataset["fits"].size(), ModelRegistry().size());
     for (const nlohmann::json& fit : dataset["fits"]) {
       EXPECT_FALSE(testing::ReadFileText(dir.File(fit.get<std::string>())).empty()) << fit;
     }

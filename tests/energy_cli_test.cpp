@@ -3,8 +3,10 @@
 // status 0: the check ran), and bad input giving exit status 2 with one line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 
 #include "test_util.h"
 
@@ -78,6 +80,23 @@ TEST(EnergyCli, BadInputIsExitTwoWithOneLine) {
     EXPECT_EQ(result.exit_status, 2) << arguments << "\n" << result.err;
     EXPECT_EQ(testing::CountLines(result.err), 1) << arguments << "\n" << result.err;
   }
+}
+
+// Microfacet model strings with values no material has are usage errors (exit 2), in one line
+// naming the key, wherever a model is taken; a valid one integrates below 1.
+TEST(EnergyCli, MicrofacetModelStringsAreCheckedAndIntegrated) {
+  for (const auto& [spec, key] :
+       {std::pair{"ggx:alpha=0", "alpha"}, std::pair{"beckmann:f0=-0.1", "f0"},
+        std::pair{"ggx:f0=1.2", "f0"}, std::pair{"beckmann:roughness=0.1", "roughness"}}) {
+    const testing::CommandResult result = RunBrdf(std::string("energy '") + spec + "' --quiet");
+    EXPECT_EQ(result.exit_status, 2) << spec << ": " << result.err;
+    EXPECT_NE(result.err.find(key), std::string::npos) << result.err;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  }
+  const testing::CommandResult ok =
+      RunBrdf("energy ggx:rho_d=0.2:f0=0.04:alpha=0.2 --theta-steps 10 --json --quiet");
+  ASSERT_EQ(ok.exit_status, 0) << ok.err;
+  EXPECT_TRUE(nlohmann::json::parse(ok.out)["conserving"].get<bool>());
 }
 
 }  // namespace

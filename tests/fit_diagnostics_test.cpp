@@ -70,7 +70,7 @@ TEST(FitDiagnostics, LobeNarrowerThanTheSampleSpacingIsReported) {
   const fitters::PreparedSamples prepared =
       fitters::PrepareSamples(SynthesizeOnHemisphere(truth, options), fitters::Loss::kL2);
   const fitters::LobeResolution lobe =
-      fitters::ResolveLobe(fitters::LobeKind::kPhong, 1e4, prepared.samples);
+      fitters::ResolveLobe(LobeFrame::kMirror, 1e4, prepared.samples);
   EXPECT_EQ(lobe.flank_samples, 0u);
   EXPECT_GT(lobe.peak_samples, 0u);
   EXPECT_NEAR(lobe.half_width_deg, 180 / kPi / std::sqrt(1e4), 1e-3);
@@ -89,14 +89,12 @@ TEST(FitDiagnostics, LobeResolutionCountsTheFlankExactly) {
       samples.push_back(sample);
     }
   }
-  const fitters::LobeResolution lobe =
-      fitters::ResolveLobe(fitters::LobeKind::kPhong, 100, samples);
+  const fitters::LobeResolution lobe = fitters::ResolveLobe(LobeFrame::kMirror, 100, samples);
   EXPECT_EQ(lobe.peak_samples, 8u);
   EXPECT_EQ(lobe.flank_samples, 16u);
   EXPECT_NEAR(lobe.nearest_off_peak_deg, 4.0, 1e-9);
   // In half-vector terms the same rings sit at half the offset: theta_h = 0.5, 2, 5, 10 deg.
-  const fitters::LobeResolution blinn =
-      fitters::ResolveLobe(fitters::LobeKind::kBlinnPhong, 100, samples);
+  const fitters::LobeResolution blinn = fitters::ResolveLobe(LobeFrame::kHalfVector, 100, samples);
   EXPECT_EQ(blinn.peak_samples, 16u);  // 0.5 and 2 deg < 2.87 deg
   EXPECT_EQ(blinn.flank_samples, 16u);
 }

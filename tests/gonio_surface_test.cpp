@@ -9,17 +9,18 @@
 
 #include "core/angles.h"
 #include "core/errors.h"
-#include "gonio/fresnel.h"
 #include "gonio/measure.h"
 #include "gonio/model_sample.h"
 #include "gonio/surface_sample.h"
 #include "gonio/traced_surface.h"
 #include "gonio_test_util.h"
+#include "models/microfacet.h"
 #include "test_util.h"
 
 namespace brdf::gonio {
 namespace {
 
+using models::FresnelReflectance;
 using testing::IdealInstrument;
 using testing::OneIncidence;
 

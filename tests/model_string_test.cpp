@@ -103,10 +103,20 @@ TEST(ModelString, ToStringRoundTripIsExact) {
   std::uniform_real_distribution<double> log_exponent(-3.0, 6.0);
   for (const ModelInfo& info : ModelRegistry()) {
     for (int trial = 0; trial < 200; ++trial) {
+      // Each parameter within its own table's range: albedos up to 1.5, exponents log-uniform
+      // over 1e-3 ... 1e6, bounded parameters (f0, alpha) uniform over their range.
       std::vector<double> params(info.num_params);
-      for (double& p : params) p = albedo(rng);
-      if (info.num_params == LobedSlots::kNumParams) {
-        params[LobedSlots::kExponent] = std::pow(10.0, log_exponent(rng));
+      for (const ParamInfo& param : info.params) {
+        for (int c = 0; c < param.channels; ++c) {
+          double& p = params[param.slot + c];
+          if (std::isinf(param.upper)) {
+            p = albedo(rng);
+          } else if (param.upper >= 1e6) {
+            p = std::pow(10.0, log_exponent(rng));
+          } else {
+            p = std::uniform_real_distribution<double>(param.lower, param.upper)(rng);
+          }
+        }
       }
       const Model model(info, params);
       const std::string text = model.ToString();

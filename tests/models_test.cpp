@@ -569,8 +569,8 @@ TEST(ModelPhong, ObliqueAlbedoIsBelowRhoSAndDecreasing) {
 TEST(Registry, ListsTheModelsOfDesignInOrder) {
   std::vector<std::string> names;
   for (const ModelInfo& info : ModelRegistry()) names.push_back(info.name);
-  EXPECT_EQ(names,
-            (std::vector<std::string>{"lambert", "phong", "blinn-phong", "blinn-phong-exact"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"lambert", "phong", "blinn-phong", "blinn-phong-exact",
+                                             "ggx", "beckmann"}));
 }
 
 TEST(Registry, ParameterSlotsCoverTheArrayExactlyOnce) {

@@ -24,13 +24,13 @@ Command AddFitCommand(CLI::App& parent) {
     bool grey_specular = false, json = false;
   };
   auto options = std::make_shared<Options>();
-  CLI::App* app = parent.add_subcommand(
-      "fit", "Fit lambert, phong, blinn-phong or blinn-phong-exact to a measurement (Ceres)");
+  std::string names;
+  for (const ModelInfo& info : ModelRegistry()) names += (names.empty() ? "" : ", ") + info.name;
+  CLI::App* app = parent.add_subcommand("fit", "Fit " + names + " to a measurement (Ceres)");
   app->add_option("FILE", options->path, "measurement file (any format brdf info reads)")
       ->required();
   app->add_option("--model", options->model,
-                  "lambert, phong, blinn-phong, blinn-phong-exact, or auto (the simplest model "
-                  "the data support, by BIC)")
+                  names + ", or auto (the simplest model the data support, by BIC)")
       ->capture_default_str();
   app->add_option("--loss", options->loss,
                   "l2 (on f), log (log(1 + f cos theta_i)) or cosine-l2 (Ngan et al. 2005)")
@@ -49,7 +49,8 @@ Command AddFitCommand(CLI::App& parent) {
                   "iterations of each Ceres solve; a fit that needs more is reported as not "
                   "converged (exit status 3)")
       ->capture_default_str();
-  app->add_flag("--grey-specular", options->grey_specular, "one rho_s for all channels");
+  app->add_flag("--grey-specular", options->grey_specular,
+                "one rho_s (or f0, for ggx and beckmann) for all channels");
   app->add_option("--illuminant", options->illuminant, "for spectral files: D65 or E")
       ->capture_default_str();
   app->add_option("--out", options->out, "write the JSON fit report here");

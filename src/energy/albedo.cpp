@@ -44,7 +44,9 @@ std::string SparseLobeWarning(const Model& model, const AlbedoOptions& options) 
   double worst_theta = 0, worst_exponent = 0;
   for (const AlbedoTerm& term : AlbedoTerms(model)) {
     if (term.coordinates.frame == LobeFrame::kNormal || !(term.scale > 0)) continue;
-    const double e = term.coordinates.exponent;
+    // The lobe's half width as a power-cosine exponent (the exponent itself for the power-cosine
+    // models; the same half width for a microfacet lobe).
+    const double e = term.model.info().equivalent_exponent(term.model.params().data());
     for (double theta_deg : options.ThetaDegrees()) {
       const double cos_theta = std::cos(DegToRad(theta_deg));
       double probability = 2.0 * cos_theta / (e + 1.0);
@@ -59,7 +61,7 @@ std::string SparseLobeWarning(const Model& model, const AlbedoOptions& options) 
   }
   if (!(worst_hits < kMinExpectedLobeHits)) return "";
   std::ostringstream text;
-  text << "Monte Carlo: the lobe (exponent " << std::setprecision(4) << worst_exponent
+  text << "Monte Carlo: the lobe (power-cosine exponent " << std::setprecision(4) << worst_exponent
        << ") expects only " << std::setprecision(3) << worst_hits << " of " << options.samples
        << " cosine samples at theta = " << std::fixed << std::setprecision(1) << worst_theta
        << " deg; a lobe no sample hits is left out of both the albedo and its error estimate, "

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "core/vec.h"
+#include "models/lobe.h"
 
 namespace brdf {
 
@@ -20,20 +21,8 @@ struct BrdfSample {
 };
 using BrdfFunction = std::function<BrdfSample(const Vec3& wi, const Vec3& wo)>;
 
-// Where a term's lobe is centred, which fixes the coordinates the quadrature integrates in and
-// the direction the importance sampler draws around.
-enum class LobeFrame {
-  kNormal,      // about the surface normal in wi (a diffuse term, or no known lobe)
-  kMirror,      // about the mirror direction of wo in wi (phong: cos(alpha) = wi.mirror(wo))
-  kHalfVector,  // about the normal in the half vector h, wi = Reflect(wo, h) (the Blinn family)
-};
-
-// A lobe frame and the exponent e of the power-cosine density (e+1)/(2 pi) cos^e that matches
-// the lobe: the quadrature warps its polar angle by that density's CDF, the sampler draws from it.
-struct LobeCoordinates {
-  LobeFrame frame = LobeFrame::kNormal;
-  double exponent = 1.0;
-};
+// LobeFrame and LobeCoordinates (where a term's lobe lies and how its mass is spread) come with
+// the models: models/lobe.h.
 
 // A directional albedo with its error estimate, per channel.
 struct AlbedoEstimate {

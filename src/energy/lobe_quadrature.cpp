@@ -150,19 +150,19 @@ class LobeRings {
 class LobeIntegrand {
  public:
   LobeIntegrand(const BrdfFunction& brdf, const Vec3& wo, const LobeCoordinates& coordinates)
-      : brdf_(brdf), wo_(wo), rings_(wo, coordinates.frame), exponent_(coordinates.exponent) {}
+      : brdf_(brdf), wo_(wo), rings_(wo, coordinates.frame), lobe_(coordinates) {}
 
   const LobeRings& rings() const { return rings_; }
-  // The warp variable u = cos^(e+1)(beta): the power-cosine lobe's CDF, so d(u) is uniform
-  // over the lobe (sampling.h, PowerCosineLobeCosTheta).
-  double WarpOf(double polar) const {
-    return std::pow(std::max(0.0, std::cos(polar)), exponent_ + 1.0);
-  }
+  // The warp variable u = the lobe's mass beyond beta (cos^(e+1)(beta) for a power cosine), so
+  // d(u) is uniform over the lobe (models/lobe.h).
+  double WarpOf(double polar) const { return LobeMassBeyond(lobe_, std::cos(polar)); }
 
-  // The ring integral at warp value u, times the warp's Jacobian:
-  // sin(beta) d(beta) = du / ((e+1) cos^e(beta)) = cos(beta) du / ((e+1) u).
+  // The ring integral at warp value u, times the warp's Jacobian: du = -2π p(beta) sin(beta)
+  // d(beta) for the lobe's density p, so sin(beta) d(beta) = du / (2π p); for the power cosine
+  // that is du / ((e+1) cos^e(beta)) = cos(beta) du / ((e+1) u), written so to stay finite for
+  // huge exponents.
   Quantities operator()(double u) const {
-    const double cos_beta = PowerCosineLobeCosTheta(u, exponent_);
+    const double cos_beta = LobeCosAt(lobe_, u);
     const double sin_beta = std::sqrt(std::max(0.0, 1.0 - cos_beta * cos_beta));
     double a = 0, b = 0;
     rings_.RingCosine(cos_beta, sin_beta, &a, &b);
@@ -190,7 +190,10 @@ class LobeIntegrand {
     evaluations_ += arc.evaluations;
     Quantities ring = arc.kronrod;
     ring[kInnerError] = ColourError(arc).maxCoeff();
-    return ring * (cos_beta / ((exponent_ + 1.0) * u));
+    if (lobe_.distribution == nullptr) return ring * (cos_beta / ((lobe_.exponent + 1.0) * u));
+    const double density = LobeDensity(lobe_, cos_beta);
+    if (!(density > 0.0)) return Quantities::Zero();
+    return ring * (1.0 / (2.0 * kPi * density));
   }
 
   int64_t evaluations() const { return evaluations_; }
@@ -199,7 +202,7 @@ class LobeIntegrand {
   const BrdfFunction& brdf_;
   Vec3 wo_;
   LobeRings rings_;
-  double exponent_;
+  LobeCoordinates lobe_;
   mutable int64_t evaluations_ = 0;
 };
 

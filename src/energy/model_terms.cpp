@@ -5,43 +5,25 @@
 namespace brdf {
 namespace {
 
-using models::LobedSlots;
-
 // Largest channel of the RGB parameter at `slot`.
 double MaxChannel(const std::vector<double>& params, int slot) {
   return std::max({params[slot], params[slot + 1], params[slot + 2]});
 }
 
-// The model with the three channels at `slot` set to zero.
-Model WithoutRgb(const Model& model, int slot) {
-  std::vector<double> params = model.params();
-  std::fill(params.begin() + slot, params.begin() + slot + 3, 0.0);
-  return Model(model.info(), std::move(params));
-}
-
 }  // namespace
 
 std::vector<AlbedoTerm> AlbedoTerms(const Model& model) {
-  const std::string& name = model.name();
   const std::vector<double>& params = model.params();
   const LobeCoordinates diffuse_coordinates{LobeFrame::kNormal, 1.0};
-  if (name == models::Lambert::kName) {
-    return {{"diffuse", model, diffuse_coordinates, MaxChannel(params, models::Lambert::kRhoD)}};
-  }
-  LobeCoordinates lobe_coordinates;
-  if (name == models::Phong::kName) {
-    // cos^n(alpha), alpha measured from the mirror direction (phong.h).
-    lobe_coordinates = {LobeFrame::kMirror, params[LobedSlots::kExponent]};
-  } else if (name == models::BlinnPhong::kName || name == models::BlinnPhongExact::kName) {
-    // cos^m(theta_h): a power-cosine lobe of the half vector about the normal.
-    lobe_coordinates = {LobeFrame::kHalfVector, params[LobedSlots::kExponent]};
-  } else {
-    return {{"whole model", model, diffuse_coordinates, 1.0}};
-  }
-  return {{"diffuse", WithoutRgb(model, LobedSlots::kRhoS), diffuse_coordinates,
-           MaxChannel(params, LobedSlots::kRhoD)},
-          {"lobe", WithoutRgb(model, LobedSlots::kRhoD), lobe_coordinates,
-           MaxChannel(params, LobedSlots::kRhoS)}};
+  // Every model's diffuse term is rho_d/π (slot 0, DESIGN §2).
+  const double diffuse_scale = MaxChannel(params, 0);
+  if (!model.info().has_lobe()) return {{"diffuse", model, diffuse_coordinates, diffuse_scale}};
+  const Model diffuse(FindModel(models::Lambert::kName), {params[0], params[1], params[2]});
+  std::vector<double> lobe_params = params;
+  std::fill(lobe_params.begin(), lobe_params.begin() + 3, 0.0);
+  return {{"diffuse", diffuse, diffuse_coordinates, diffuse_scale},
+          {"lobe", Model(model.info(), std::move(lobe_params)), model.Lobe(),
+           model.LobeWeight().maxCoeff()}};
 }
 
 BrdfFunction ModelBrdf(const Model& model) {

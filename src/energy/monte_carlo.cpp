@@ -8,6 +8,27 @@
 #include "core/sampling.h"
 
 namespace brdf {
+namespace {
+
+// A direction about +z drawn from the lobe's density (models/lobe.h): the polar angle by
+// inverting the lobe's mass beyond it, the azimuth uniform.
+Vec3 SampleLobeAboutZ(const LobeCoordinates& lobe, const Point2& u) {
+  if (lobe.distribution == nullptr) return SamplePowerCosineLobe(u, lobe.exponent);
+  // 1 - u: u in [0, 1) maps to a mass in (0, 1], never exactly the horizon.
+  const double cos_theta = LobeCosAt(lobe, 1.0 - u.x());
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  const double phi = 2.0 * kPi * u.y();
+  return Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
+}
+
+// Whether the lobe draws the half vector from the normals visible from wo (models/lobe.h);
+// only for wo above the surface, where they are defined.
+bool VisibleNormals(const LobeCoordinates& lobe, const Vec3& wo) {
+  return lobe.distribution != nullptr && lobe.distribution->sample_visible != nullptr &&
+         wo.z() > 0.0;
+}
+
+}  // namespace
 
 Vec3 SampleStrategy(const LobeCoordinates& coordinates, const Vec3& wo, const Point2& u) {
   switch (coordinates.frame) {
@@ -18,7 +39,11 @@ Vec3 SampleStrategy(const LobeCoordinates& coordinates, const Vec3& wo, const Po
       return Frame::FromZ(MirrorDirection(wo))
           .FromLocal(SamplePowerCosineLobe(u, coordinates.exponent));
     case LobeFrame::kHalfVector:
-      return Reflect(wo, SamplePowerCosineLobe(u, coordinates.exponent));
+      if (VisibleNormals(coordinates, wo)) {
+        return Reflect(
+            wo, coordinates.distribution->sample_visible(wo, u.x(), u.y(), coordinates.exponent));
+      }
+      return Reflect(wo, SampleLobeAboutZ(coordinates, u));
   }
   return Vec3::UnitZ();
 }
@@ -34,8 +59,11 @@ double StrategyPdf(const LobeCoordinates& coordinates, const Vec3& wo, const Vec
       const Vec3 sum = wi + wo;
       if (sum.squaredNorm() <= 0.0) return 0.0;
       const Vec3 half_vector = sum.normalized();
-      return HalfVectorToIncidentPdf(
-          PowerCosineLobePdf(CosTheta(half_vector), coordinates.exponent), wo.dot(half_vector));
+      const double density =
+          VisibleNormals(coordinates, wo)
+              ? coordinates.distribution->visible_density(wo, half_vector, coordinates.exponent)
+              : LobeDensity(coordinates, CosTheta(half_vector));
+      return HalfVectorToIncidentPdf(density, wo.dot(half_vector));
     }
   }
   return 0.0;

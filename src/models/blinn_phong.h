@@ -19,6 +19,22 @@ namespace brdf::models {
 
 struct BlinnPhong : LobedSlots {
   static constexpr const char* kName = "blinn-phong";
+  static constexpr const char* kFormula = "rho_d/pi + rho_s (m+8)/(8pi) cos^m(theta_h)";
+
+  static std::vector<ParamInfo> Params() { return LobedParams("m"); }
+  // cos^m(theta_h): a power-cosine lobe of the half vector about the normal.
+  static LobeCoordinates Lobe(const double* params) {
+    return {LobeFrame::kHalfVector, params[kExponent]};
+  }
+  // Normal-incidence lobe albedo per unit rho_s, A(m) above (templated for Ceres Jets).
+  template <typename T>
+  static T NormalLobeAlbedo(const T& m) {
+    using std::pow;
+    return (m + T(8)) * (pow(T(2), -m / T(2)) + m) / ((m + T(2)) * (m + T(4)));
+  }
+  static Rgb LobeWeight(const double* params) {
+    return LoadRgb(params, kRhoS) * NormalLobeAlbedo(params[kExponent]);
+  }
 
   template <typename T, typename D>
   static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
@@ -40,8 +56,6 @@ struct BlinnPhong : LobedSlots {
 };
 
 // Normal-incidence lobe albedo of blinn-phong per unit rho_s (the closed form above).
-inline double BlinnPhongNormalAlbedo(double m) {
-  return (m + 8.0) * (std::pow(2.0, -m / 2.0) + m) / ((m + 2.0) * (m + 4.0));
-}
+inline double BlinnPhongNormalAlbedo(double m) { return BlinnPhong::NormalLobeAlbedo(m); }
 
 }  // namespace brdf::models

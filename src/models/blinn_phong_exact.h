@@ -18,6 +18,19 @@ namespace brdf::models {
 
 struct BlinnPhongExact : LobedSlots {
   static constexpr const char* kName = "blinn-phong-exact";
+  static constexpr const char* kFormula =
+      "rho_d/pi + rho_s (m+2)(m+4)/(8pi(2^(-m/2)+m)) cos^m(theta_h)";
+
+  static std::vector<ParamInfo> Params() { return LobedParams("m"); }
+  static LobeCoordinates Lobe(const double* params) {
+    return {LobeFrame::kHalfVector, params[kExponent]};
+  }
+  // Normal-incidence lobe albedo per unit rho_s: exactly 1 (the factor above is built for it).
+  template <typename T>
+  static T NormalLobeAlbedo(const T&) {
+    return T(1);
+  }
+  static Rgb LobeWeight(const double* params) { return LoadRgb(params, kRhoS); }
 
   template <typename T, typename D>
   static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {

@@ -5,18 +5,64 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
 
 #include "core/angles.h"
 #include "core/vec.h"
+#include "models/lobe.h"
+
+namespace brdf {
+
+// One row of a model's parameter table (each model header owns its table: Model::Params()).
+struct ParamInfo {
+  std::string name;    // as written in model strings and reports, e.g. "rho_d"
+  int slot = 0;        // first index in the flat parameter array
+  int channels = 1;    // 3 for RGB parameters
+  double lower = 0.0;  // accepted range (inclusive)
+  double upper = 0.0;
+  double default_value = 0.0;
+  std::string meaning;
+};
+
+}  // namespace brdf
 
 namespace brdf::models {
 
-// Slot layout of the lobed models: rho_d (RGB), rho_s (RGB), exponent.
+// What a fitter and a diagnostic need to know of a model's shape, besides its table:
+//   kDiffuse      no lobe (lambert);
+//   kPowerCosine  rho_d, rho_s, exponent; the lobe albedo per unit rho_s is largest at normal
+//                 incidence (Model::NormalLobeAlbedo);
+//   kMicrofacet   rho_d, f0, alpha; the lobe albedo depends on incidence through Fresnel and
+//                 masking and is tabulated by the fitter (fitters/microfacet_bound.h).
+enum class ModelFamily { kDiffuse, kPowerCosine, kMicrofacet };
+
+// Every model takes a diffuse albedo first. Albedos are not capped at 1 here: a non-conserving
+// material must be expressible so that `brdf energy` can show that it is not conserving.
+inline ParamInfo DiffuseAlbedoParam() {
+  return {"rho_d", 0, 3, 0.0, std::numeric_limits<double>::infinity(), 0.5, "diffuse albedo (RGB)"};
+}
+
+// Slot layout of the power-cosine models: rho_d (RGB), rho_s (RGB), exponent; and what they
+// share: the parameter table (only the exponent's name differs), the lobe's weight and the
+// width of the lobe as a power-cosine exponent (the diagnostics' measure).
 struct LobedSlots {
+  static constexpr ModelFamily kFamily = ModelFamily::kPowerCosine;
   static constexpr int kRhoD = 0;
   static constexpr int kRhoS = 3;
   static constexpr int kExponent = 6;
+  static constexpr int kShape = kExponent;
   static constexpr int kNumParams = 7;
+
+  // Exponents up to 1e6 cover real materials (measured lobes reach ~1e5) with room to spare.
+  static std::vector<ParamInfo> LobedParams(const char* exponent_name) {
+    return {DiffuseAlbedoParam(),
+            {"rho_s", kRhoS, 3, 0.0, std::numeric_limits<double>::infinity(), 0.04,
+             "specular lobe albedo scale (RGB)"},
+            {exponent_name, kExponent, 1, 0.0, 1e6, 100.0, "lobe exponent (larger is sharper)"}};
+  }
+  static double EquivalentExponent(const double* params) { return params[kExponent]; }
 };
 
 template <typename T>

@@ -12,8 +12,16 @@ namespace brdf::models {
 
 struct Lambert {
   static constexpr const char* kName = "lambert";
+  static constexpr const char* kFormula = "rho_d/pi";
+  static constexpr ModelFamily kFamily = ModelFamily::kDiffuse;
   static constexpr int kRhoD = 0;
+  static constexpr int kShape = -1;  // no lobe, no shape parameter
   static constexpr int kNumParams = 3;
+
+  static std::vector<ParamInfo> Params() { return {DiffuseAlbedoParam()}; }
+  static LobeCoordinates Lobe(const double*) { return {LobeFrame::kNormal, 1.0}; }
+  static Rgb LobeWeight(const double*) { return Rgb::Zero(); }
+  static double EquivalentExponent(const double*) { return 0.0; }
 
   template <typename T, typename D>
   static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {

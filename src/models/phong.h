@@ -16,6 +16,20 @@ namespace brdf::models {
 
 struct Phong : LobedSlots {
   static constexpr const char* kName = "phong";
+  static constexpr const char* kFormula = "rho_d/pi + rho_s (n+2)/(2pi) cos^n(alpha)";
+
+  static std::vector<ParamInfo> Params() { return LobedParams("n"); }
+  // The lobe is a power cosine about the mirror direction, exactly the sampler's density.
+  static LobeCoordinates Lobe(const double* params) {
+    return {LobeFrame::kMirror, params[kExponent]};
+  }
+  // Normal-incidence lobe albedo per unit rho_s: 1 by construction (see above), and the
+  // largest over incidence.
+  template <typename T>
+  static T NormalLobeAlbedo(const T&) {
+    return T(1);
+  }
+  static Rgb LobeWeight(const double* params) { return LoadRgb(params, kRhoS); }
 
   template <typename T, typename D>
   static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {

@@ -7,46 +7,27 @@
 namespace brdf {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// Albedos are not capped at 1 here: a non-conserving material must be expressible so that
-// `brdf energy` can show that it is not conserving. Exponents up to 1e6 cover real materials
-// (measured lobes reach ~1e5) with room to spare.
-ParamInfo RhoD(double default_value) {
-  return {"rho_d", models::LobedSlots::kRhoD, 3, 0.0, kInf, default_value, "diffuse albedo (RGB)"};
-}
-ParamInfo RhoS() {
-  return {"rho_s", models::LobedSlots::kRhoS,         3, 0.0, kInf,
-          0.04,    "specular lobe albedo scale (RGB)"};
-}
-ParamInfo Exponent(const char* name) {
-  return {name,  models::LobedSlots::kExponent,      1, 0.0, 1e6,
-          100.0, "lobe exponent (larger is sharper)"};
-}
-
 template <typename M>
-ModelInfo MakeInfo(std::string formula, std::vector<ParamInfo> params) {
+ModelInfo MakeInfo() {
   ModelInfo info;
   info.name = M::kName;
-  info.formula = std::move(formula);
+  info.formula = M::kFormula;
   info.num_params = M::kNumParams;
-  info.params = std::move(params);
+  info.params = M::Params();
+  info.family = M::kFamily;
+  info.shape_slot = M::kShape;
   info.eval = [](const double* p, const Vec3& wi, const Vec3& wo) -> Rgb {
     return M::template Eval<double>(p, wi, wo);
   };
+  info.lobe = [](const double* p) { return M::Lobe(p); };
+  info.lobe_weight = [](const double* p) { return M::LobeWeight(p); };
+  info.equivalent_exponent = [](const double* p) { return M::EquivalentExponent(p); };
   return info;
 }
 
 std::vector<ModelInfo> BuildRegistry() {
   std::vector<ModelInfo> registry;
-  registry.push_back(MakeInfo<models::Lambert>("rho_d/pi", {RhoD(0.5)}));
-  registry.push_back(MakeInfo<models::Phong>("rho_d/pi + rho_s (n+2)/(2pi) cos^n(alpha)",
-                                             {RhoD(0.5), RhoS(), Exponent("n")}));
-  registry.push_back(MakeInfo<models::BlinnPhong>("rho_d/pi + rho_s (m+8)/(8pi) cos^m(theta_h)",
-                                                  {RhoD(0.5), RhoS(), Exponent("m")}));
-  registry.push_back(MakeInfo<models::BlinnPhongExact>(
-      "rho_d/pi + rho_s (m+2)(m+4)/(8pi(2^(-m/2)+m)) cos^m(theta_h)",
-      {RhoD(0.5), RhoS(), Exponent("m")}));
+  models::ForEachModel([&](auto model) { registry.push_back(MakeInfo<decltype(model)>()); });
   return registry;
 }
 
@@ -57,6 +38,15 @@ const ParamInfo* ModelInfo::FindParam(std::string_view param_name) const {
     if (param.name == param_name) return &param;
   }
   return nullptr;
+}
+
+const ParamInfo& ModelInfo::shape_param() const {
+  const ParamInfo* found = nullptr;
+  for (const ParamInfo& param : params) {
+    if (param.slot == shape_slot) found = &param;
+  }
+  if (found == nullptr) throw UsageError("model '" + name + "' has no lobe");
+  return *found;
 }
 
 std::vector<double> ModelInfo::DefaultParams() const {

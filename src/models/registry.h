@@ -1,6 +1,7 @@
-// The runtime model registry: name -> parameter table (names, bounds, meaning, defaults) and
-// an evaluator. The templated structs (lambert.h, phong.h, ...) hold the math; this file lets
-// the command line, readers and reports handle a model chosen at run time.
+// The runtime model registry: name -> parameter table (names, bounds, meaning, defaults), an
+// evaluator and the model's lobe. The templated structs (lambert.h, phong.h, ggx.h, ...) hold the
+// math and their own tables; this file, built from the one list in model_list.h, lets the command
+// line, readers, integrators and reports handle a model chosen at run time.
 #pragma once
 
 #include <string>
@@ -8,29 +9,29 @@
 #include <vector>
 
 #include "core/vec.h"
-#include "models/blinn_phong.h"
-#include "models/blinn_phong_exact.h"
-#include "models/lambert.h"
-#include "models/phong.h"
+#include "models/common.h"
+#include "models/model_list.h"
 
 namespace brdf {
-
-struct ParamInfo {
-  std::string name;    // as written in model strings and reports, e.g. "rho_d"
-  int slot = 0;        // first index in the flat parameter array
-  int channels = 1;    // 3 for RGB parameters
-  double lower = 0.0;  // accepted range (inclusive)
-  double upper = 0.0;
-  double default_value = 0.0;
-  std::string meaning;
-};
 
 struct ModelInfo {
   std::string name;
   std::string formula;  // f(wi, wo) as in DESIGN §2
   int num_params = 0;
   std::vector<ParamInfo> params;
+  models::ModelFamily family = models::ModelFamily::kDiffuse;
+  int shape_slot = -1;  // the lobe's width parameter (exponent or alpha); -1 without a lobe
   Rgb (*eval)(const double* params, const Vec3& wi, const Vec3& wo) = nullptr;
+  // Where the lobe lies and its density (kNormal for a diffuse model).
+  LobeCoordinates (*lobe)(const double* params) = nullptr;
+  // The lobe's share of the albedo per channel (power cosine: A(e) rho_s; microfacet: the
+  // hemispherical average of Fresnel); the weight of the lobe in an importance mixture.
+  Rgb (*lobe_weight)(const double* params) = nullptr;
+  // The lobe's half width as a power-cosine exponent (0 without a lobe), for the diagnostics.
+  double (*equivalent_exponent)(const double* params) = nullptr;
+
+  bool has_lobe() const { return shape_slot >= 0; }
+  const ParamInfo& shape_param() const;  // only when has_lobe()
 
   const ParamInfo* FindParam(std::string_view param_name) const;
   std::vector<double> DefaultParams() const;
@@ -45,12 +46,8 @@ const ModelInfo& FindModel(std::string_view name);
 // model at compile time, such as Ceres residuals). Throws UsageError for an unknown name.
 template <typename Visitor>
 decltype(auto) VisitModelType(std::string_view name, Visitor&& visitor) {
-  if (name == models::Lambert::kName) return visitor(models::Lambert{});
-  if (name == models::Phong::kName) return visitor(models::Phong{});
-  if (name == models::BlinnPhong::kName) return visitor(models::BlinnPhong{});
-  if (name == models::BlinnPhongExact::kName) return visitor(models::BlinnPhongExact{});
-  FindModel(name);  // throws the descriptive error
-  return visitor(models::Lambert{});
+  return models::VisitModel(models::AllModels{}, name, std::forward<Visitor>(visitor),
+                            [&] { FindModel(name); });
 }
 
 // A model with its parameter values.
@@ -65,6 +62,8 @@ class Model {
   double Param(std::string_view param_name, int channel = 0) const;
 
   Rgb Eval(const Vec3& wi, const Vec3& wo) const { return info_->eval(params_.data(), wi, wo); }
+  LobeCoordinates Lobe() const { return info_->lobe(params_.data()); }
+  Rgb LobeWeight() const { return info_->lobe_weight(params_.data()); }
 
   // The canonical model string, e.g. "phong:rho_d=0.5:rho_s=0.04:n=100"; ParseModel reads it
   // back to the same values (the shortest text that round-trips each double). With

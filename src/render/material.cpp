@@ -10,7 +10,6 @@
 #include "core/colour.h"
 #include "core/errors.h"
 #include "energy/measured.h"
-#include "energy/model_terms.h"
 #include "io/formats.h"
 #include "models/model_source.h"
 
@@ -20,10 +19,8 @@ namespace {
 class ModelMaterial : public Material {
  public:
   explicit ModelMaterial(Model model) : model_(std::move(model)) {
-    // The albedo split of `brdf energy` already knows each model's lobe frame and exponent.
-    for (const AlbedoTerm& term : AlbedoTerms(model_)) {
-      if (term.name == "lobe" && term.scale > 0.0) lobe_ = term.coordinates;
-    }
+    // The model knows its own lobe: frame and density (models/lobe.h).
+    if (model_.info().has_lobe() && model_.LobeWeight().maxCoeff() > 0.0) lobe_ = model_.Lobe();
   }
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override { return model_.Eval(wi, wo); }
   std::string Describe() const override { return model_.ToString(); }
@@ -166,9 +163,9 @@ std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
     for (const ModelInfo& info : ModelRegistry()) {
       if (info.name == name) return std::make_unique<ModelMaterial>(LoadModel(spec));
     }
-    throw InputError(spec,
-                     "no such file, and not a model string (models: lambert, phong, "
-                     "blinn-phong, blinn-phong-exact)");
+    std::string names;
+    for (const ModelInfo& info : ModelRegistry()) names += (names.empty() ? "" : ", ") + info.name;
+    throw InputError(spec, "no such file, and not a model string (models: " + names + ")");
   }
   Measurement measurement = ReadMeasurement(spec);
   if (measurement.tabulated != nullptr) {

@@ -1,0 +1,55 @@
+#include "fitters/microfacet_bound.h"
+
+#include <tbb/parallel_for.h>
+
+#include "core/angles.h"
+#include "energy/lobe_quadrature.h"
+#include "energy/model_terms.h"
+
+namespace brdf::fitters {
+namespace {
+
+// Tolerance of each tabulated albedo: far below the margin (see the header).
+constexpr double kTableTolerance = 1e-7;
+
+}  // namespace
+
+double MicrofacetAlbedoTable::NodeAlpha(int j) {
+  const double log_min = std::log(kMinAlpha), log_max = std::log(kMaxAlpha);
+  return std::exp(log_min + (log_max - log_min) * j / (kAlphaNodes - 1));
+}
+
+double MicrofacetAlbedoTable::NodeTheta(int k, double alpha) {
+  if (k < kUniformThetaNodes) return DegToRad(k * kUniformThetaStepDeg);
+  const int m = k - kUniformThetaNodes;
+  const double scale = kMinGrazingScale * std::pow(kMaxGrazingScale / kMinGrazingScale,
+                                                   m / double(kGrazingThetaNodes - 1));
+  return std::atan(scale / alpha);
+}
+
+MicrofacetAlbedoTable::MicrofacetAlbedoTable(const ModelInfo& info) {
+  const int nodes = kAlphaNodes * ThetaNodes();
+  e0_.assign(nodes, 0.0);
+  e1_.assign(nodes, 0.0);
+  LobeQuadratureOptions options;
+  options.tolerance = kTableTolerance;
+  options.max_intervals = 400;
+  tbb::parallel_for(0, nodes, [&](int node) {
+    const int j = node / ThetaNodes(), k = node % ThetaNodes();
+    const double alpha = NodeAlpha(j);
+    // The lobe alone (rho_d = 0); the red channel has f0 = 0, the green f0 = 1.
+    std::vector<double> params(info.num_params, 0.0);
+    for (const ParamInfo& param : info.params) {
+      if (param.name == "f0") params[param.slot + 1] = 1.0;
+    }
+    params[info.shape_slot] = alpha;
+    const Model lobe(info, params);
+    const Vec3 wo = SphericalDirection(NodeTheta(k, alpha), 0.0);
+    const AlbedoEstimate estimate =
+        IntegrateInLobeCoordinates(ModelBrdf(lobe), wo, lobe.Lobe(), options);
+    e0_[node] = estimate.albedo[0];
+    e1_[node] = estimate.albedo[1];
+  });
+}
+
+}  // namespace brdf::fitters
