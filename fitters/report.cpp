@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
+
+#include "core/text.h"
 
 namespace brdf::fitters {
 namespace {
@@ -17,17 +20,40 @@ nlohmann::json ParamJson(const ParamInfo& param, const std::vector<double>& valu
   return array;
 }
 
-std::string Numbers(const ParamInfo& param, const std::vector<double>& values) {
+// `values` of one parameter, padded for the table; parameter values (not their errors) are shown
+// as people read them, a value at its bound as the bound (ParamInfo::Displayed).
+std::string Numbers(const ParamInfo& param, const std::vector<double>& values, bool displayed) {
   std::string text;
   char buffer[32];
   for (int c = 0; c < param.channels; ++c) {
     const double value = values[param.slot + c];
     if (std::isfinite(value)) {
-      std::snprintf(buffer, sizeof(buffer), "%-12.6g", value);
+      std::snprintf(buffer, sizeof(buffer), "%-12.6g", displayed ? param.Displayed(value) : value);
     } else {
       std::snprintf(buffer, sizeof(buffer), "%-12s", "n/a");
     }
     text += buffer;
+  }
+  return text;
+}
+
+// "rho_d (r, g) = 0; alpha = 1.5": the parameters whose value sits at a bound of its range.
+std::string AtBoundList(const Model& model) {
+  std::string text;
+  for (const ParamInfo& param : model.info().params) {
+    std::string channels;
+    double bound = 0;
+    int count = 0;
+    for (int c = 0; c < param.channels; ++c) {
+      const double value = model.params()[param.slot + c];
+      if (!param.AtBound(value)) continue;
+      bound = param.Displayed(value);
+      channels += std::string(count++ ? ", " : "") + "rgb"[c];
+    }
+    if (count == 0) continue;
+    if (!text.empty()) text += "; ";
+    text += param.name + (param.channels > 1 ? " (" + channels + ")" : "") + " = " +
+            FormatNumber(bound);
   }
   return text;
 }
@@ -100,11 +126,16 @@ void PrintFitReport(std::ostream& out, const FitResult& fit, const std::string& 
   out << "parameter   value (r g b)                           ± standard error\n";
   for (const ParamInfo& param : fit.model.info().params) {
     std::snprintf(line, sizeof(line), "%-11s %-39s ± %s\n", param.name.c_str(),
-                  Numbers(param, fit.model.params()).c_str(),
-                  fit.stderr_available ? Numbers(param, fit.stderr_values).c_str() : "n/a");
+                  Numbers(param, fit.model.params(), true).c_str(),
+                  fit.stderr_available ? Numbers(param, fit.stderr_values, false).c_str() : "n/a");
     out << line;
   }
   if (!fit.stderr_available) out << "stderr      " << fit.stderr_note << "\n";
+  const std::string at_bound = AtBoundList(fit.model);
+  if (!at_bound.empty()) {
+    out << "at bound    " << at_bound
+        << ": pinned at the end of the model's range (the data ask for no more of it)\n";
+  }
   std::snprintf(line, sizeof(line),
                 "metrics     rmse %.6g sr^-1, log_rmse %.6g, cosine_l2 %.6g (%s loss, robust %s)\n",
                 fit.metrics.rmse, fit.metrics.log_rmse, fit.metrics.cosine_l2, LossName(fit.loss),

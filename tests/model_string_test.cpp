@@ -183,5 +183,18 @@ TEST(ModelString, ErrorMessageQuotesTheWholeString) {
   ExpectUsageError("phong:rho_d=0.1:n=oops", {"phong:rho_d=0.1:n=oops"});
 }
 
+// A fitted albedo driven to its bound arrives at ~1e-17, not 0: the text for people reads 0,
+// the round-trip text keeps every digit, and a value near but off the bound is left alone.
+TEST(ModelString, ValuesAtTheirBoundReadAsTheBoundForPeople) {
+  const Model model = ParseModel("phong:rho_d=4.18e-18,0.082,1e-7:rho_s=0.0171:n=6122");
+  EXPECT_EQ(model.ToString(4), "phong:rho_d=0,0.082,1e-07:rho_s=0.0171:n=6122");
+  EXPECT_EQ(ParseModel(model.ToString()).params(), model.params());
+  const ParamInfo& rho_d = *model.info().FindParam("rho_d");
+  EXPECT_TRUE(rho_d.AtBound(4.18e-18));
+  EXPECT_TRUE(rho_d.AtBound(0.0));
+  EXPECT_FALSE(rho_d.AtBound(1e-7));
+  EXPECT_EQ(rho_d.Displayed(-1e-12), 0.0);
+}
+
 }  // namespace
 }  // namespace brdf

@@ -56,6 +56,24 @@ TEST(RenderCli, ModelUnderPresetAndEnvironmentWritesPngAndExr) {
   EXPECT_EQ(dir.CountEntries(), 2);
 }
 
+// The summary gives luminance with its unit and in cd/m² beside it: a Lambertian of albedo rho
+// under E lux at normal incidence has L = rho E / pi, which is the sphere's brightest pixel.
+TEST(RenderCli, SummaryGivesLuminanceInWattsAndNits) {
+  ScratchDir dir;
+  const testing::CommandResult result =
+      RunBrdf("render lambert:rho_d=0.5 --preset office --size 64 --spp 4 --out '" +
+              dir.File("o.png") + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const size_t max = result.out.find("max ");
+  ASSERT_NE(max, std::string::npos) << result.out;
+  const size_t equals = result.out.find(" W/(m^2 sr) = ", max);
+  ASSERT_NE(equals, std::string::npos) << result.out;
+  const double nits = std::stod(result.out.substr(equals + 14));
+  EXPECT_NE(result.out.find("cd/m^2", equals), std::string::npos);
+  const double expected = 0.5 * 500.0 / 3.14159265358979;  // office: 500 lx
+  EXPECT_NEAR(nits, expected, 0.01 * expected) << result.out;
+}
+
 TEST(RenderCli, MeasurementsRenderThroughInterpolation) {
   ScratchDir dir;
   const testing::CommandResult result =

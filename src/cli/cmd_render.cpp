@@ -158,8 +158,8 @@ Command AddRenderCommand(CLI::App& parent) {
         if (!options->quiet) {
           std::cout << "wrote " << options->output
                     << (options->exr.empty() ? "" : " and " + options->exr) << ": "
-                    << material->Describe() << "; " << render.Summary() << "; " << toned.Summary()
-                    << comparison << "\n";
+                    << material->Describe() << "; " << render.Summary() << "; "
+                    << toned.Summary(/*radiometric=*/true) << comparison << "\n";
         }
         return 0;
       }};

@@ -18,6 +18,10 @@ inline double Luminance(const Rgb& rgb) {
 
 // Photometric constants: the luminous efficacy of 555 nm radiation (CIE), lux = lm/m^2.
 inline constexpr double kLumensPerWattAt555nm = 683.0;
+// Luminance in cd/m² (nits) of the luminance Y of a radiance in W/(m² sr): the same 683 lm/W
+// that turns lux into irradiance (render/lights.h), so a scene lit by L lux reads back in units
+// of that light.
+inline double RadianceToNits(double luminance) { return luminance * kLumensPerWattAt555nm; }
 
 enum class Illuminant { kD65, kE };
 // "D65" or "E" (case-insensitive); throws UsageError for anything else.

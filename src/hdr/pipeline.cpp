@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/colour.h"
 #include "core/errors.h"
 #include "hdr/bloom.h"
 #include "hdr/exposure.h"
@@ -30,12 +31,22 @@ void ToneOptions::Validate() const {
   }
 }
 
-std::string ToneResult::Summary() const {
+std::string ToneResult::Summary(bool radiometric) const {
   char buffer[256];
   std::string text;
-  std::snprintf(buffer, sizeof(buffer),
-                "%dx%d, log-average luminance %.4g, max %.4g, exposure %.4g", display.width,
-                display.height, scene.log_average, scene.max, exposure);
+  if (radiometric) {
+    std::snprintf(buffer, sizeof(buffer),
+                  "%dx%d, log-average luminance %.4g W/(m^2 sr) = %.4g cd/m^2, max %.4g W/(m^2 sr) "
+                  "= %.4g cd/m^2, exposure %.4g",
+                  display.width, display.height, scene.log_average,
+                  RadianceToNits(scene.log_average), scene.max, RadianceToNits(scene.max),
+                  exposure);
+  } else {
+    std::snprintf(
+        buffer, sizeof(buffer),
+        "%dx%d, log-average luminance %.4g, max %.4g (the file's own units), exposure %.4g",
+        display.width, display.height, scene.log_average, scene.max, exposure);
+  }
   text = buffer;
   text += std::string(", ") + ToneOperatorName(mapping.tone_operator);
   if (mapping.tone_operator == ToneOperator::kReinhardExtended) {

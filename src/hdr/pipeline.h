@@ -42,9 +42,11 @@ struct ToneResult {
   double bloom_sigma = 0.0;  // the blur's real sigma (dual filtering rounds to whole levels)
   // What the caller should tell the user (e.g. black pixels that moved the automatic exposure).
   std::vector<std::string> warnings;
-  // e.g. "1920x1080, exposure 0.81 (auto), reinhard-extended L_white 42.1, bloom dual 15.5 px,
-  // srgb"
-  std::string Summary() const;
+  // e.g. "1920x1080, log-average luminance 0.0326 W/(m² sr) = 22.3 cd/m², max ..., exposure
+  // 0.81, reinhard-extended L_white 42.1, bloom sigma 15.5 px". `radiometric`: the image holds
+  // radiance in W/(m² sr) (a `brdf render`), so luminance is given in both units; otherwise its
+  // scale is unknown (any photograph) and the numbers are said to be relative.
+  std::string Summary(bool radiometric = false) const;
 };
 
 // Equal, byte for byte, to running the stages one after another on a copy of `image`; fused

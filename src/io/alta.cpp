@@ -83,8 +83,8 @@ Measurement ReadAlta(const std::string& path, const ReadOptions&) {
         if (dim_line != 0)
           reader.Fail("second #DIM line (first on line " + std::to_string(dim_line) + ")");
         dim_line = reader.line_number();
-        const std::vector<std::string_view> fields =
-            SplitFields(KeywordValue(line, "#DIM"), " \t", true);
+        const std::string counts = KeywordValue(line, "#DIM");  // the fields view into it
+        const std::vector<std::string_view> fields = SplitFields(counts, " \t", true);
         if (fields.size() != 2)
           reader.Fail("#DIM needs two counts (inputs outputs), e.g. '#DIM 3 1'");
         dims_in = ParseCount(reader, fields[0], "the #DIM input count", 16);

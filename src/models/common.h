@@ -4,6 +4,7 @@
 // registry can name the slots instead of using bare indices.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -24,6 +25,22 @@ struct ParamInfo {
   double upper = 0.0;
   double default_value = 0.0;
   std::string meaning;
+
+  // The value as a person should read it: one within kDisplaySnap (relative to the bound, or
+  // absolute for a bound of 0) of a finite bound of its range is that bound. A fit drives an
+  // albedo it does not need toward 0 through a logistic share, so it arrives at 1e-17, not at
+  // 0; printed so, it reads like a measured quantity. Reports in JSON keep the full value.
+  static constexpr double kDisplaySnap = 1e-9;
+  static bool Near(double value, double bound) {
+    return std::isfinite(bound) &&
+           std::abs(value - bound) <= kDisplaySnap * std::max(1.0, std::abs(bound));
+  }
+  double Displayed(double value) const {
+    if (Near(value, lower)) return lower;
+    if (Near(value, upper)) return upper;
+    return value;
+  }
+  bool AtBound(double value) const { return Near(value, lower) || Near(value, upper); }
 };
 
 }  // namespace brdf

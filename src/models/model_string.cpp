@@ -90,8 +90,9 @@ std::string Model::ToString(int significant) const {
     const int shown = grey ? 1 : param.channels;
     for (int c = 0; c < shown; ++c) {
       const double value = params_[param.slot + c];
-      text += (c ? "," : "") +
-              (significant > 0 ? FormatNumber(value, significant) : FormatNumber(value));
+      // Rounded for people: a value at its bound reads as the bound (ParamInfo::Displayed).
+      text += (c ? "," : "") + (significant > 0 ? FormatNumber(param.Displayed(value), significant)
+                                                : FormatNumber(value));
     }
   }
   return text;
