@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "core/angles.h"
 #include "core/errors.h"
@@ -281,10 +280,14 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
     ranks::AppendBytes(&bytes, packed.data(), packed.size());
     return bytes;
   };
-  auto collect_incidence = [&](size_t g, int /*rank*/, std::string&& bytes) {
+  auto collect_incidence = [&](size_t g, int rank, std::string&& bytes) {
     const size_t count = schedule.incidences[g].detectors.size();
-    std::vector<double> packed(count * kDoubles);
-    std::memcpy(packed.data(), bytes.data(), packed.size() * sizeof(double));
+    const std::vector<double> packed = ranks::ReadValues<double>(bytes);
+    if (packed.size() != count * kDoubles) {
+      throw ComputeError("rank " + std::to_string(rank) + " returned " + std::to_string(packed.size()) +
+                  " numbers for incidence " + std::to_string(g) + "; expected " +
+                  std::to_string(count * kDoubles));
+    }
     for (size_t k = 0; k < count; ++k) {
       const double* p = &packed[k * kDoubles];
       blocked[offsets[g] + k] = p[0] != 0;

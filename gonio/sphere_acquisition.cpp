@@ -4,7 +4,6 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <cstring>
 #include <map>
 #include <string>
 
@@ -142,9 +141,8 @@ void SphereAcquisition::Acquire(const Schedule& schedule, uint64_t seed,
   std::map<size_t, std::string> early;  // views that arrived before one they follow (rank 0)
   size_t next_view = 0;
   auto append = [&](const std::string& bytes) {
-    const size_t count = bytes.size() / (kDoubles * sizeof(double));
-    std::vector<double> numbers(count * kDoubles);
-    std::memcpy(numbers.data(), bytes.data(), numbers.size() * sizeof(double));
+    const std::vector<double> numbers = ranks::ReadValues<double>(bytes);
+    const size_t count = numbers.size() / kDoubles;
     for (size_t k = 0; k < count; ++k) {
       const double* p = &numbers[k * kDoubles];
       measurement->samples.push_back(

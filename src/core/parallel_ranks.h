@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstring>
 #include <functional>
 #include <string>
 #include <vector>
@@ -91,6 +92,15 @@ void Distribute(const WorkPlan& plan, const std::function<void()>& prepare,
 template <typename T>
 void AppendBytes(std::string* bytes, const T* values, size_t count) {
   bytes->append(reinterpret_cast<const char*>(values), count * sizeof(T));
+}
+
+// The values AppendBytes packed: as many whole T as `bytes` holds (none from an empty result,
+// without handing memcpy a null pointer).
+template <typename T>
+std::vector<T> ReadValues(const std::string& bytes) {
+  std::vector<T> values(bytes.size() / sizeof(T));
+  if (!values.empty()) std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
+  return values;
 }
 
 }  // namespace brdf::ranks
