@@ -54,9 +54,10 @@ constexpr double kRoundingFloor = 1e-9;
 constexpr double kClusteringScore = 5.0;
 
 // Mismatch: with honest sigmas the reduced chi-square is 1 +- sqrt(2/dof), 1 +- 0.01 for 20,000
-// residuals. Stated sigmas are estimates themselves (the virtual gonioreflectometer's leave
-// out arm jitter, docs/gonio.md), so the check allows them to be off by a factor of two: it
-// warns when the rms misfit is more than twice the stated uncertainty (chi-square > 4).
+// residuals. Stated sigmas are estimates themselves (an instrument's error budget is a model
+// too; the virtual gonioreflectometer's includes the arm's positioning jitter, docs/gonio.md),
+// so the check allows them to be off by a factor of two: it warns when the rms misfit is more
+// than twice the stated uncertainty (chi-square > 4).
 constexpr double kMaxReducedChiSquare = 4.0;
 
 std::string Format(const char* format, double value) {

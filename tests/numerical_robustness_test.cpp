@@ -13,6 +13,7 @@
 #include "core/angles.h"
 #include "fitters/fit.h"
 #include "hdr/image_files.h"
+#include "models/model_list.h"
 #include "models/model_string.h"
 #include "test_util.h"
 
@@ -63,13 +64,14 @@ TEST(NumericalRobustness, FitsOnZerosMissingSamplesAndHugeRangeStayFinite) {
     EXPECT_TRUE(std::isfinite(fit.metrics.rmse)) << what;
     EXPECT_GT(fit.skipped, 0u) << what;  // the missing samples were left out
   };
-  for (const char* model : {"lambert", "phong", "blinn-phong", "blinn-phong-exact"}) {
+  models::ForEachModel([&](auto model) {
+    const char* name = decltype(model)::kName;
     for (const fitters::Loss loss :
          {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
-      expect_finite(model, loss, fitters::Robust::kNone);
+      expect_finite(name, loss, fitters::Robust::kNone);
     }
-    expect_finite(model, fitters::Loss::kL2, fitters::Robust::kCauchy);
-  }
+    expect_finite(name, fitters::Loss::kL2, fitters::Robust::kCauchy);
+  });
 }
 
 // An environment of radiance 1 with a few broken pixels and, optionally, one very bright one.

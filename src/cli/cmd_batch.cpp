@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/fit_options.h"
 #include "core/atomic_file.h"
-#include "core/colour.h"
 #include "core/errors.h"
 #include "core/parallel_ranks.h"
 #include "core/progress.h"
@@ -30,7 +30,6 @@
 #include "fitters/report.h"
 #include "fitters/select.h"
 #include "io/formats.h"
-#include "models/registry.h"
 
 namespace brdf::cli {
 namespace {
@@ -91,12 +90,10 @@ std::vector<std::string> ReportNames(const std::vector<std::string>& files) {
 
 struct BatchOptions {
   std::vector<std::string> files;
-  std::string model = "auto", loss = "l2", robust = "none", out, illuminant = "D65";
-  std::string concurrency = "files";
-  size_t max_samples = fitters::FitOptions{}.max_samples;
-  uint64_t seed = 1;
-  int threads = 0, max_iterations = fitters::FitOptions{}.max_iterations;
-  bool grey_specular = false, json = false, quiet = false;
+  FitArguments fit;
+  std::string out, concurrency = "files";
+  int threads = 0;
+  bool json = false, quiet = false;
 };
 
 // One file: read, fit, report. The result is JSON text: {"report": ...} or, for a file that
@@ -105,14 +102,12 @@ std::string FitOneFile(const BatchOptions& options, const fitters::FitOptions& f
                        const std::string& path) {
   nlohmann::json result;
   try {
-    ReadOptions read_options;
-    read_options.illuminant = ParseIlluminant(options.illuminant);
-    const Measurement measurement = ReadMeasurement(path, read_options);
+    const Measurement measurement = ReadMeasurement(path, options.fit.ToReadOptions());
     fitters::Selection selection;
-    const bool automatic = options.model == "auto";
-    const fitters::FitResult fit = automatic
-                                       ? fitters::SelectAndFit(measurement, fit_options, &selection)
-                                       : fitters::FitModel(measurement, options.model, fit_options);
+    const bool automatic = options.fit.Automatic();
+    const fitters::FitResult fit =
+        automatic ? fitters::SelectAndFit(measurement, fit_options, &selection)
+                  : fitters::FitModel(measurement, options.fit.model, fit_options);
     result["report"] = fitters::FitReportJson(fit, path, automatic ? &selection : nullptr);
   } catch (const ComputeError& error) {
     result["error"] = error.what();
@@ -161,12 +156,6 @@ void WriteTable(std::ostream& out, const std::vector<std::vector<nlohmann::json>
   }
 }
 
-std::string ModelChoices() {
-  std::string names;
-  for (const ModelInfo& info : ModelRegistry()) names += info.name + ", ";
-  return names + "or auto (the simplest model the data support, by BIC)";
-}
-
 }  // namespace
 
 Command AddBatchCommand(CLI::App& parent) {
@@ -175,24 +164,7 @@ Command AddBatchCommand(CLI::App& parent) {
       "batch", "Fit many measurement files: one fit report per file and one CSV table");
   app->add_option("FILE", options->files, "measurement files (any format brdf info reads)")
       ->required();
-  app->add_option("--model", options->model, ModelChoices())->capture_default_str();
-  app->add_option("--loss", options->loss,
-                  "l2 (on f), log (log(1 + f cos theta_i)) or cosine-l2 (Ngan et al. 2005)")
-      ->capture_default_str();
-  app->add_option("--robust", options->robust, "none, huber or cauchy (for outliers)")
-      ->capture_default_str();
-  app->add_option("--max-samples", options->max_samples,
-                  "stratified subsample for the multi-start, then a polish on all samples "
-                  "(0: all samples throughout)")
-      ->capture_default_str();
-  app->add_option("--seed", options->seed, "seed of the subsample draw")->capture_default_str();
-  app->add_option("--max-iterations", options->max_iterations,
-                  "iterations of each Ceres solve; a fit that needs more is reported as not "
-                  "converged")
-      ->capture_default_str();
-  app->add_flag("--grey-specular", options->grey_specular, "one rho_s for all channels");
-  app->add_option("--illuminant", options->illuminant, "for spectral files: D65 or E")
-      ->capture_default_str();
+  AddFitOptions(app, &options->fit);
   app->add_option("--threads", options->threads,
                   "worker threads per process (0: all cores); the outputs do not depend on it")
       ->capture_default_str()
@@ -219,19 +191,11 @@ Command AddBatchCommand(CLI::App& parent) {
 
   return {app,
           [options]() {
-            fitters::FitOptions fit_options;
-            fit_options.loss = fitters::ParseLoss(options->loss);
-            fit_options.robust = fitters::ParseRobust(options->robust);
-            fit_options.max_samples = options->max_samples;
-            fit_options.seed = options->seed;
-            fit_options.max_iterations = options->max_iterations;
-            fit_options.grey_specular = options->grey_specular;
-            const bool files_at_once = options->concurrency == "files";
             // Several files at once: one thread per fit keeps the cores busy without nesting.
-            fit_options.threads = files_at_once ? 1 : options->threads;
-            fit_options.Validate();
-            if (options->model != "auto") FindModel(options->model);  // a bad name fails here
-            ParseIlluminant(options->illuminant);
+            const bool files_at_once = options->concurrency == "files";
+            const fitters::FitOptions fit_options =
+                options->fit.ToFitOptions(files_at_once ? 1 : options->threads);
+            options->fit.ToReadOptions();  // a bad illuminant fails before any file is read
             const std::vector<std::string> report_names = ReportNames(options->files);
             if (!options->out.empty() && ranks::IsRoot()) {
               std::error_code error;

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/fit_options.h"
 #include "cli/slice_plot.h"
 #include "core/atomic_file.h"
 #include "fitters/fit.h"
@@ -17,41 +18,18 @@ namespace brdf::cli {
 
 Command AddFitCommand(CLI::App& parent) {
   struct Options {
-    std::string path, model = "auto", loss = "l2", robust = "none", out, illuminant = "D65", plot;
-    size_t max_samples = 20000;
-    uint64_t seed = 1;
-    int threads = 0, max_iterations = fitters::FitOptions{}.max_iterations;
-    bool grey_specular = false, json = false;
+    std::string path, out, plot;
+    FitArguments fit;
+    int threads = 0;
+    bool json = false;
   };
   auto options = std::make_shared<Options>();
-  std::string names;
-  for (const ModelInfo& info : ModelRegistry()) names += (names.empty() ? "" : ", ") + info.name;
-  CLI::App* app = parent.add_subcommand("fit", "Fit " + names + " to a measurement (Ceres)");
+  CLI::App* app = parent.add_subcommand("fit", "Fit " + ModelNames() + " to a measurement (Ceres)");
   app->add_option("FILE", options->path, "measurement file (any format brdf info reads)")
       ->required();
-  app->add_option("--model", options->model,
-                  names + ", or auto (the simplest model the data support, by BIC)")
-      ->capture_default_str();
-  app->add_option("--loss", options->loss,
-                  "l2 (on f), log (log(1 + f cos theta_i)) or cosine-l2 (Ngan et al. 2005)")
-      ->capture_default_str();
-  app->add_option("--robust", options->robust, "none, huber or cauchy (for outliers)")
-      ->capture_default_str();
-  app->add_option("--max-samples", options->max_samples,
-                  "stratified subsample for the multi-start, then a polish on all samples "
-                  "(0: all samples throughout)")
-      ->capture_default_str();
-  app->add_option("--seed", options->seed, "seed of the subsample draw")->capture_default_str();
+  AddFitOptions(app, &options->fit);
   app->add_option("--threads", options->threads,
                   "worker threads (0: all cores); the output does not depend on it")
-      ->capture_default_str();
-  app->add_option("--max-iterations", options->max_iterations,
-                  "iterations of each Ceres solve; a fit that needs more is reported as not "
-                  "converged (exit status 3)")
-      ->capture_default_str();
-  app->add_flag("--grey-specular", options->grey_specular,
-                "one rho_s (or f0, for ggx and beckmann) for all channels");
-  app->add_option("--illuminant", options->illuminant, "for spectral files: D65 or E")
       ->capture_default_str();
   app->add_option("--out", options->out, "write the JSON fit report here");
   app->add_flag("--json", options->json, "print the JSON report instead of the table");
@@ -60,24 +38,15 @@ Command AddFitCommand(CLI::App& parent) {
                   "(+- sigma) and the fitted model, one panel per incidence, log scale");
 
   return {app, [options]() {
-            fitters::FitOptions fit_options;
-            fit_options.loss = fitters::ParseLoss(options->loss);
-            fit_options.robust = fitters::ParseRobust(options->robust);
-            fit_options.max_samples = options->max_samples;
-            fit_options.seed = options->seed;
-            fit_options.threads = options->threads;
-            fit_options.max_iterations = options->max_iterations;
-            fit_options.grey_specular = options->grey_specular;
-            fit_options.Validate();
-            ReadOptions read_options;
-            read_options.illuminant = ParseIlluminant(options->illuminant);
-            const Measurement measurement = ReadMeasurement(options->path, read_options);
+            const fitters::FitOptions fit_options = options->fit.ToFitOptions(options->threads);
+            const Measurement measurement =
+                ReadMeasurement(options->path, options->fit.ToReadOptions());
 
             fitters::Selection selection;
-            const bool automatic = options->model == "auto";
+            const bool automatic = options->fit.Automatic();
             const fitters::FitResult fit =
                 automatic ? fitters::SelectAndFit(measurement, fit_options, &selection)
-                          : fitters::FitModel(measurement, options->model, fit_options);
+                          : fitters::FitModel(measurement, options->fit.model, fit_options);
             const fitters::Selection* chosen = automatic ? &selection : nullptr;
             const nlohmann::json report = fitters::FitReportJson(fit, options->path, chosen);
             if (!options->out.empty()) {

@@ -1,0 +1,57 @@
+#include "cli/fit_options.h"
+
+#include "models/registry.h"
+
+namespace brdf::cli {
+
+std::string ModelNames() {
+  std::string names;
+  for (const ModelInfo& info : ModelRegistry()) names += (names.empty() ? "" : ", ") + info.name;
+  return names;
+}
+
+fitters::FitOptions FitArguments::ToFitOptions(int threads) const {
+  if (!Automatic()) FindModel(model);  // a bad name fails here, before any file is read
+  fitters::FitOptions options;
+  options.loss = fitters::ParseLoss(loss);
+  options.robust = fitters::ParseRobust(robust);
+  options.max_samples = max_samples;
+  options.seed = seed;
+  options.threads = threads;
+  options.max_iterations = max_iterations;
+  options.grey_specular = grey_specular;
+  options.Validate();
+  return options;
+}
+
+brdf::ReadOptions FitArguments::ToReadOptions() const {
+  brdf::ReadOptions options;
+  options.illuminant = ParseIlluminant(illuminant);
+  return options;
+}
+
+void AddFitOptions(CLI::App* app, FitArguments* arguments) {
+  app->add_option("--model", arguments->model,
+                  ModelNames() + ", or auto (the simplest model the data support, by BIC)")
+      ->capture_default_str();
+  app->add_option("--loss", arguments->loss,
+                  "l2 (on f), log (log(1 + f cos theta_i)) or cosine-l2 (Ngan et al. 2005)")
+      ->capture_default_str();
+  app->add_option("--robust", arguments->robust, "none, huber or cauchy (for outliers)")
+      ->capture_default_str();
+  app->add_option("--max-samples", arguments->max_samples,
+                  "stratified subsample for the multi-start, then a polish on all samples "
+                  "(0: all samples throughout)")
+      ->capture_default_str();
+  app->add_option("--seed", arguments->seed, "seed of the subsample draw")->capture_default_str();
+  app->add_option("--max-iterations", arguments->max_iterations,
+                  "iterations of each Ceres solve; a fit that needs more is reported as not "
+                  "converged (exit status 3)")
+      ->capture_default_str();
+  app->add_flag("--grey-specular", arguments->grey_specular,
+                "one rho_s (or f0, for ggx and beckmann) for all channels");
+  app->add_option("--illuminant", arguments->illuminant, "for spectral files: D65 or E")
+      ->capture_default_str();
+}
+
+}  // namespace brdf::cli
