@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -159,6 +160,39 @@ TEST(Merl, ConvertMerlToMerlIsBitExact) {
       testing::RunBrdf("convert --quiet '" + original + "' '" + copy + "'");
   ASSERT_EQ(result.exit_status, 0) << result.err;
   EXPECT_TRUE(testing::ReadFileText(original) == testing::ReadFileText(copy));
+}
+
+// `brdf convert MODEL X.binary` tabulates the model: read back, every cell the reader places at
+// (wi, wo) holds the model's value there; a model has no samples of its own to write as CSV.
+TEST(Merl, ConvertTabulatesAModel) {
+  ScratchDir dir;
+  const std::string spec = "ggx:rho_d=0.2,0.1,0.05:f0=0.04:alpha=0.15";
+  const std::string path = dir.File("ggx.binary");
+  const testing::CommandResult result =
+      testing::RunBrdf("convert --quiet '" + spec + "' '" + path + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const Model model = ParseModel(spec);
+  const Measurement read = ReadMeasurement(path);
+  size_t checked = 0;
+  for (size_t k = 0; k < read.samples.size(); k += 997) {
+    const Sample& sample = read.samples[k];
+    if (sample.missing) continue;
+    const Rgb expected = model.Eval(sample.wi, sample.wo);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(sample.value[c], expected[c], 1e-9 * std::max(1.0, expected[c])) << k;
+    }
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000u);
+
+  const testing::CommandResult csv =
+      testing::RunBrdf("convert '" + spec + "' '" + dir.File("ggx.csv") + "'");
+  EXPECT_EQ(csv.exit_status, 2);
+  EXPECT_NE(csv.err.find("--schedule"), std::string::npos) << csv.err;
+  const testing::CommandResult neither =
+      testing::RunBrdf("convert '" + dir.File("absent") + "' '" + dir.File("x.csv") + "'");
+  EXPECT_EQ(neither.exit_status, 2);
+  EXPECT_NE(neither.err.find("not a model string"), std::string::npos) << neither.err;
 }
 
 TEST(Merl, HostileFilesNameTheByte) {

@@ -3,7 +3,9 @@
 // round trip is bit-exact (a detour through sr^-1 values would not be: x * (1/1500) * 1500 is
 // not always x). Dense tables (a reader's evaluator, Measurement::tabulated) become a MERL table
 // by evaluation at the cell centres (WriteMerl), and with --schedule are evaluated at the
-// geometries of a gonio schedule instead of writing their own samples.
+// geometries of a gonio schedule instead of writing their own samples. A model (string or
+// FIT.json) is such a dense input: `brdf convert ggx:... ggx.binary` tabulates it for renderers
+// that read MERL tables.
 #include <iostream>
 #include <memory>
 
@@ -13,6 +15,7 @@
 #include "gonio/schedule.h"
 #include "io/formats.h"
 #include "io/merl.h"
+#include "models/model_source.h"
 
 namespace brdf::cli {
 namespace {
@@ -61,7 +64,9 @@ Command AddConvertCommand(CLI::App& parent) {
   auto options = std::make_shared<Options>();
   CLI::App* app =
       parent.add_subcommand("convert", "Convert a measurement file to native CSV or MERL .binary");
-  app->add_option("IN", options->input, "input measurement file")->required();
+  app->add_option("IN", options->input,
+                  "input measurement file, or a model (model string or FIT.json) to tabulate")
+      ->required();
   app->add_option("OUT", options->output,
                   "output file; the format follows the extension (.csv, .binary)")
       ->required();
@@ -74,34 +79,47 @@ Command AddConvertCommand(CLI::App& parent) {
                   "(as in brdf measure, e.g. inplane:step=5) instead of writing its own samples");
   app->add_flag("--quiet", options->quiet, "print nothing on success");
 
-  return {app, [options]() {
-            const FileFormat& output_format = OutputFormat(options->output, options->format);
-            const FileFormat& input_format = DetectFormat(options->input);
-            WriteReport report;
-            size_t samples = 0;
-            if (input_format.name == "merl" && output_format.name == "merl" &&
-                options->schedule.empty()) {
-              MerlTable::Read(options->input).Write(options->output);
-              samples = MerlTable::kCells;
-            } else {
-              ReadOptions read_options;
-              read_options.illuminant = ParseIlluminant(options->illuminant);
-              Measurement measurement = ReadMeasurement(options->input, read_options);
-              if (!options->schedule.empty()) {
-                measurement = EvaluateOnSchedule(measurement, options->schedule);
-              }
-              samples = measurement.samples.size();
-              report = WriteMeasurement(measurement, options->output, output_format.name);
-            }
-            for (const std::string& warning : report.warnings) {
-              std::cerr << "brdf convert: warning: " << warning << "\n";
-            }
-            if (!options->quiet) {
-              std::cout << "wrote " << options->output << " (" << output_format.name << ", from "
-                        << samples << " " << input_format.name << " samples)\n";
-            }
-            return 0;
-          }};
+  return {
+      app, [options]() {
+        const FileFormat& output_format = OutputFormat(options->output, options->format);
+        WriteReport report;
+        std::string from;  // what the output was made from, for the closing line
+        if (IsModelSpec(options->input)) {
+          Measurement model = ModelAsMeasurement(LoadModel(options->input), options->input);
+          if (!options->schedule.empty()) {
+            model = EvaluateOnSchedule(model, options->schedule);
+          } else if (output_format.name != "merl") {
+            throw UsageError(
+                "a model has no samples of its own: give --schedule to evaluate it at a gonio "
+                "schedule's geometries, or write a MERL .binary");
+          }
+          report = WriteMeasurement(model, options->output, output_format.name);
+          from = std::to_string(model.samples.empty() ? MerlTable::kCells : model.samples.size()) +
+                 " evaluations of " + model.metadata["model"];
+        } else if (const FileFormat& input_format = DetectFormat(options->input);
+                   input_format.name == "merl" && output_format.name == "merl" &&
+                   options->schedule.empty()) {
+          MerlTable::Read(options->input).Write(options->output);
+          from = std::to_string(MerlTable::kCells) + " merl samples";
+        } else {
+          ReadOptions read_options;
+          read_options.illuminant = ParseIlluminant(options->illuminant);
+          Measurement measurement = ReadMeasurement(options->input, read_options);
+          if (!options->schedule.empty()) {
+            measurement = EvaluateOnSchedule(measurement, options->schedule);
+          }
+          from = std::to_string(measurement.samples.size()) + " " + input_format.name + " samples";
+          report = WriteMeasurement(measurement, options->output, output_format.name);
+        }
+        for (const std::string& warning : report.warnings) {
+          std::cerr << "brdf convert: warning: " << warning << "\n";
+        }
+        if (!options->quiet) {
+          std::cout << "wrote " << options->output << " (" << output_format.name << ", from "
+                    << from << ")\n";
+        }
+        return 0;
+      }};
 }
 
 }  // namespace brdf::cli

@@ -4,7 +4,6 @@
 // estimate per value, and the energy-conservation verdict (DESIGN §7). A material that does
 // not conserve energy is a finding, not a failure: the exit status is 0 whenever the check ran.
 #include <chrono>
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -103,13 +102,11 @@ Command AddEnergyCommand(CLI::App& parent) {
             const auto start = std::chrono::steady_clock::now();
             Progress progress("energy", options->albedo.theta_steps, options->quiet);
             AlbedoCurve curve;
-            // A fit report or a model string names a model; any other existing path is data
-            // (a directory or a device then gets the reader's diagnosis).
-            if (!IsFitReportPath(options->source) && std::filesystem::exists(options->source)) {
+            if (IsModelSpec(options->source)) {
+              curve = ModelAlbedoCurve(LoadModel(options->source), options->albedo, &progress);
+            } else {
               curve = MeasuredAlbedoCurve(LoadMeasuredBrdf(options->source), options->albedo,
                                           &progress);
-            } else {
-              curve = ModelAlbedoCurve(LoadModel(options->source), options->albedo, &progress);
             }
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -19,7 +19,8 @@ struct Sample {
   bool missing = false;  // the instrument has no value here (e.g. MERL's negative entries)
 };
 
-// A reader's evaluator for dense tabulated data (MERL tables, RGL-EPFL tensors; DESIGN §4): a
+// A reader's evaluator for dense tabulated data (MERL tables, RGL-EPFL tensors; DESIGN §4), or a
+// model standing in for one (ModelAsMeasurement, models/model_source.h): a
 // capability consumers ask for instead of testing format names. Energy, render, fit and convert
 // use it when present; data without one go through scattered interpolation.
 class TabulatedBrdf {

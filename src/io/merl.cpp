@@ -319,7 +319,7 @@ WriteReport WriteMerl(const Measurement& measurement, const std::string& path) {
   int64_t missing = 0;
   for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) missing += table.raw(0, cell) < 0.0;
   report.warnings.push_back("tabulated at the " + std::to_string(MerlTable::kCells) +
-                            " MERL cell centres through the reader's evaluator (" +
+                            " MERL cell centres through the input's evaluator (" +
                             measurement.tabulated->LookupName() + "); " + std::to_string(missing) +
                             " cells (below the horizon or without a "
                             "value) written as missing (-1)");

@@ -1,5 +1,7 @@
 #include "models/model_source.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -16,6 +18,20 @@ namespace {
 
 // Fit reports are small; anything larger is not one.
 constexpr int64_t kMaxReportBytes = int64_t{16} << 20;
+
+class AnalyticTable : public TabulatedBrdf {
+ public:
+  explicit AnalyticTable(Model model) : model_(std::move(model)) {}
+  Rgb Eval(const Vec3& wi, const Vec3& wo) const override { return model_.Eval(wi, wo); }
+  std::string Describe() const override { return "the analytic model " + model_.ToString(); }
+  std::string LookupName() const override { return "analytic " + model_.name(); }
+  // A model has no cells: each evaluation stands for itself.
+  double CellMeasure(const Vec3&, const Vec3&) const override { return 1.0; }
+  std::string CellMeasureName() const override { return "none (an analytic model)"; }
+
+ private:
+  Model model_;
+};
 
 }  // namespace
 
@@ -76,6 +92,28 @@ Model ReadFitReportModel(const std::string& path) {
 Model LoadModel(const std::string& spec) {
   if (IsFitReportPath(spec)) return ReadFitReportModel(spec);
   return ParseModel(spec);
+}
+
+Measurement ModelAsMeasurement(const Model& model, const std::string& spec) {
+  Measurement measurement;
+  measurement.format = "model";
+  measurement.source = spec;
+  measurement.metadata["model"] = model.ToString();
+  measurement.tabulated = std::make_shared<AnalyticTable>(model);
+  return measurement;
+}
+
+bool IsModelSpec(const std::string& spec) {
+  if (IsFitReportPath(spec)) return true;
+  struct stat info;
+  if (::stat(spec.c_str(), &info) == 0) return false;
+  const std::string name = spec.substr(0, spec.find(':'));
+  std::string names;
+  for (const ModelInfo& model : ModelRegistry()) {
+    if (model.name == name) return true;
+    names += (names.empty() ? "" : ", ") + model.name;
+  }
+  throw InputError(spec, "no such file, and not a model string (models: " + names + ")");
 }
 
 }  // namespace brdf

@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "core/measurement.h"
 #include "models/registry.h"
 
 namespace brdf {
@@ -18,5 +19,16 @@ Model ReadFitReportModel(const std::string& path);
 
 // A model string or a fit report path; throws UsageError / InputError.
 Model LoadModel(const std::string& spec);
+
+// For arguments that take a model or a measurement: true when `spec` is a model (a fit report
+// path, or a string that names no existing path and starts with a model's name), false when it
+// is data (any other existing path, even a directory or a device, so that the reader says what
+// is wrong with it). A string that is neither throws InputError saying so.
+bool IsModelSpec(const std::string& spec);
+
+// A model standing in for a dense measurement: no samples of its own, and an evaluator
+// (Measurement::tabulated) that is the model itself, so that whatever tabulates a dense input
+// (a MERL table at its cell centres, a gonio schedule's geometries) tabulates the model.
+Measurement ModelAsMeasurement(const Model& model, const std::string& spec);
 
 }  // namespace brdf

@@ -1,6 +1,5 @@
 #include "render/material.h"
 
-#include <sys/stat.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -147,26 +146,10 @@ class TabulatedMaterial : public Material {
   std::optional<LobeCoordinates> lobe_;
 };
 
-// Any existing path is data, even a directory or a device: the reader then says what is wrong
-// with it instead of "not a model string".
-bool PathExists(const std::string& path) {
-  struct stat info;
-  return ::stat(path.c_str(), &info) == 0;
-}
-
 }  // namespace
 
 std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
-  if (IsFitReportPath(spec)) return std::make_unique<ModelMaterial>(LoadModel(spec));
-  if (!PathExists(spec)) {
-    const std::string name = spec.substr(0, spec.find(':'));
-    for (const ModelInfo& info : ModelRegistry()) {
-      if (info.name == name) return std::make_unique<ModelMaterial>(LoadModel(spec));
-    }
-    std::string names;
-    for (const ModelInfo& info : ModelRegistry()) names += (names.empty() ? "" : ", ") + info.name;
-    throw InputError(spec, "no such file, and not a model string (models: " + names + ")");
-  }
+  if (IsModelSpec(spec)) return std::make_unique<ModelMaterial>(LoadModel(spec));
   Measurement measurement = ReadMeasurement(spec);
   if (measurement.tabulated != nullptr) {
     const std::string lookup_name = measurement.tabulated->LookupName();
