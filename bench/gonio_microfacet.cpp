@@ -8,7 +8,8 @@
 //   normals (rms |∇h|, per-axis standard deviations, excess kurtosis of the x slope); the
 //   fitted rho_d, f0, alpha and alpha's standard error; the traced reflectance at normal
 //   incidence (all directions), and the fraction of it lost when the paths are cut at 1 bounce.
-// `--quick` traces fewer rays and slopes (a smoke test). Run through bench/gonio_microfacet_bench.
+// `--quick` traces fewer rays and slopes (a smoke test); `key=value` arguments change the
+// settings (main() lists them). Run through bench/gonio_microfacet_bench.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -39,7 +40,7 @@ constexpr const char* kBase = "conductor:ior=0.05:k=4.3";
 struct Settings {
   std::vector<double> slopes = {0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8};
   std::vector<int> bounces = {1, 8};
-  int64_t rays = 1000000;
+  int64_t rays = 400000;
   int resolution = 256;
   double correlation = 4;
   int seed = 1;
