@@ -1,13 +1,14 @@
 // The virtual gonioreflectometer against microfacet theory (docs/gonio.md): Gaussian height
 // fields of rms slope s under a silver-like conductor (exact Fresnel 0.987–0.992 over 0–85°,
-// so Schlick's f0 represents it), measured over the hemisphere by `brdf measure`'s own path and
-// fitted with `beckmann` by `brdf fit`'s library. Beckmann's alpha should equal s (DESIGN §2)
-// as long as single scattering dominates; with one bounce traced (multiple scattering cut) it
-// should equal s at every slope. Written as CSV, one row per (slope, bounces):
-//   requested rms slope; the generated triangles' slope statistics, measured from the facet
-//   normals (rms |∇h|, per-axis standard deviations, excess kurtosis of the x slope); the
-//   fitted rho_d, f0, alpha and alpha's standard error; the traced reflectance at normal
-//   incidence (all directions), and the fraction of it lost when the paths are cut at 1 bounce.
+// so Schlick's f0 represents it), measured over the hemisphere by `brdf measure`'s own path
+// (ideal instrument) and fitted with `beckmann` by `brdf fit`'s library. Beckmann's alpha should
+// equal s (DESIGN §2) where single scattering dominates; with one bounce traced (multiple
+// scattering cut) at every slope. Written as CSV, one row per (slope, bounces):
+//   the generated triangles' slope statistics from their vertices (rms |∇h|, per-axis standard
+//   deviations, excess kurtosis of the x slope); alpha, f0 and rho_d fitted with the L2 loss and
+//   no sigma weights; alpha with the log loss, no sigma weights; alpha and its standard error
+//   with the L2 loss weighted by the sigma column; the traced reflectance at normal incidence
+//   (all directions); the wall time of the measurement.
 // `--quick` traces fewer rays and slopes (a smoke test); `key=value` arguments change the
 // settings (main() lists them). Run through bench/gonio_microfacet_bench.
 #include <algorithm>

@@ -28,7 +28,7 @@ constexpr const char* kSilver = "conductor:ior=0.05:k=4.3";
 std::string SurfaceJson(double rms_slope) {
   return R"({"heightfield": {"kind": "gaussian", "rms_slope": )" + std::to_string(rms_slope) +
          R"(, "resolution": 128, "seed": 3, "correlation": 2}, "base": ")" + kSilver +
-         R"(", "rays_per_incidence": 100000})";
+         R"(", "rays_per_incidence": 50000})";
 }
 
 // The generated triangles have the slope statistics the JSON asks for: rms |∇h| = s, each axis
@@ -47,7 +47,7 @@ TEST(GonioFacetSlopes, GaussianFacetsHaveTheRequestedSlopeStatistics) {
   }
 }
 
-// Measured over the hemisphere (θi 0 … 80° in 20° steps, θo and φo every 5° and 10°) and fitted
+// Measured over the hemisphere (θi 0 … 80° in 20° steps, θo and φo every 5° and 15°) and fitted
 // with beckmann (`brdf fit --loss log`): alpha within 5 % of the rms slope for s = 0.1, 0.3 and
 // 0.5. The fit is weighted by solid angle only: the sigma column of a traced reading comes from
 // its own hits, and weights that follow the readings' fluctuations pull a least-squares fit
@@ -55,7 +55,7 @@ TEST(GonioFacetSlopes, GaussianFacetsHaveTheRequestedSlopeStatistics) {
 // outweighing the rest (docs/gonio.md). One test for the three slopes: the fitter's microfacet
 // albedo table, built once per process, costs more than the three traces.
 TEST(GonioMicrofacetTest, BeckmannFitRecoversTheRmsSlope) {
-  const Schedule schedule = MakeSchedule("hemisphere:theta_i_step=20:theta_o_step=5:phi_o_step=10");
+  const Schedule schedule = MakeSchedule("hemisphere:theta_i_step=20:theta_o_step=5:phi_o_step=15");
   for (double slope : {0.1, 0.3, 0.5}) {
     brdf::testing::ScratchDir dir;
     MeasureOptions options;
@@ -63,7 +63,7 @@ TEST(GonioMicrofacetTest, BeckmannFitRecoversTheRmsSlope) {
     options.instrument = IdealInstrument();
     options.instrument.detector_solid_angle_sr = 0.003;
     Measurement measurement = Measure(options, schedule);
-    ASSERT_GT(measurement.samples.size(), 2500u);
+    ASSERT_GT(measurement.samples.size(), 2000u);
     measurement.sigma.clear();
     fitters::FitOptions fit_options;
     fit_options.loss = fitters::Loss::kLog;
