@@ -2,7 +2,8 @@
 // units of the grid spacing on an n × n periodic grid, so slopes are plain differences.
 //   flat       — all zero (measured analytically: no BVH, surface_sample.h);
 //   gaussian   — white noise smoothed by a periodic Gaussian of `correlation` cells, scaled so
-//                the rms slope sqrt(<|∇h|²>) of the facets is `rms_slope` (Beckmann's m);
+//                the rms slope sqrt(<|∇h|²>) of the facets over both axes is `rms_slope`
+//                (each axis: rms_slope/√2), which is Beckmann's alpha (DESIGN §2);
 //   v-grooves  — symmetric V grooves along y, `period` cells wide, facet slope `rms_slope`
 //                (the geometry of Torrance & Sparrow 1967);
 //   file       — heights from the first channel of an OpenEXR image (square, in spacing units).

@@ -29,6 +29,7 @@ class TracedSurfaceSample : public GonioSample {
     std::vector<Rgb> detector_power;
     std::vector<Rgb> detector_power_standard_error;  // Monte Carlo, from the spread of batches
     Rgb reflected = Rgb::Zero();                     // escaped upward, any direction
+    int64_t escaped = 0;                             // paths that escaped upward
     double incident = 0;
     int64_t segments = 0;   // ray segments traced (Embree queries)
     int64_t paths_cut = 0;  // paths still carrying weight at the bounce limit

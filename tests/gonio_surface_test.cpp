@@ -122,6 +122,32 @@ TEST(GonioSurfaceTest, NearlyFlatTracedConductorMatchesFresnel) {
   EXPECT_NEAR(trace.reflected[0] / trace.incident, fresnel, 0.01 * fresnel);
 }
 
+// A detector no path reached reads 0 with the Monte Carlo error of one escaped path (the mean
+// escaping weight), not with no error at all; a detector that received every path keeps an
+// error far below its power. Without the first, a fit weighted by sigma takes empty detectors
+// for exact zeros (docs/gonio.md: the Beckmann validation).
+TEST(GonioSurfaceTest, EmptyDetectorCarriesOnePathOfMonteCarloError) {
+  SurfaceSpec spec;
+  spec.heightfield.kind = "gaussian";
+  spec.heightfield.rms_slope = 1e-3;
+  spec.heightfield.resolution = 32;
+  spec.base = "conductor:ior=0.18:k=3.42";
+  const Instrument instrument = IdealInstrument();
+  const auto sample = MakeSurfaceSample(spec, instrument);
+  const auto* traced = dynamic_cast<const TracedSurfaceSample*>(sample.get());
+  ASSERT_NE(traced, nullptr);
+  const Vec3 wi = SphericalDirection(DegToRad(30), 0);
+  const Vec3 far = SphericalDirection(DegToRad(60), 0);  // back-scatter: no mirror reaches it
+  const auto trace =
+      traced->TraceIncidence(instrument, wi, {MirrorDirection(wi), far}, 2, 0, 20000);
+  ASSERT_EQ(trace.escaped, 20000);
+  const double one_path = trace.reflected[0] / double(trace.escaped);
+  EXPECT_EQ(trace.detector_power[1][0], 0.0);
+  EXPECT_NEAR(trace.detector_power_standard_error[1][0], one_path, 1e-12 * one_path);
+  EXPECT_NEAR(trace.detector_power[0][0], trace.reflected[0], 1e-9 * trace.reflected[0]);
+  EXPECT_LT(trace.detector_power_standard_error[0][0], 1e-3 * trace.detector_power[0][0]);
+}
+
 TEST(GonioSurfaceTest, RoughConductorConservesEnergyAndIsReciprocal) {
   SurfaceSpec spec;
   spec.heightfield.kind = "gaussian";

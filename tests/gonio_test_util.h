@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/angles.h"
+#include "gonio/height_field.h"
 #include "gonio/instrument.h"
 #include "gonio/schedule.h"
 #include "models/registry.h"
@@ -50,6 +51,42 @@ inline double ApertureAverageByGrid(const Model& model, const Vec3& wi, const Ve
     }
   }
   return integral / solid_angle;
+}
+
+// Slope statistics of the triangles the tracer builds from a height field (two per cell, as in
+// gonio/traced_surface.cpp: a-b-d and a-d-c), computed from their vertices, independently of
+// HeightField::RmsSlope. Every triangle has the same projected area, so plain means over the
+// triangles are the moments of the slope distribution Beckmann's D describes.
+struct FacetSlopes {
+  double rms = 0;       // sqrt(<|∇h|²>): Beckmann's alpha for a Gaussian surface
+  double sigma_x = 0;   // standard deviation of ∂h/∂x (alpha/√2 for a Gaussian surface)
+  double sigma_y = 0;   // of ∂h/∂y
+  double kurtosis = 0;  // excess kurtosis of ∂h/∂x: 0 for a Gaussian
+};
+
+inline FacetSlopes MeasureFacetSlopes(const HeightField& field) {
+  double sx = 0, sy = 0, sxx = 0, syy = 0, sx4 = 0;
+  double count = 0;
+  const auto add = [&](double p, double q) {
+    sx += p, sy += q, sxx += p * p, syy += q * q, sx4 += p * p * p * p;
+    count += 1;
+  };
+  for (int y = 0; y < field.resolution; ++y) {
+    for (int x = 0; x < field.resolution; ++x) {
+      const double a = field.At(x, y), b = field.At(x + 1, y), c = field.At(x, y + 1),
+                   d = field.At(x + 1, y + 1);
+      add(b - a, d - b);  // triangle a-b-d: (x, y), (x+1, y), (x+1, y+1)
+      add(d - c, c - a);  // triangle a-d-c: (x, y), (x+1, y+1), (x, y+1)
+    }
+  }
+  const double mx = sx / count, my = sy / count;
+  const double vx = sxx / count - mx * mx, vy = syy / count - my * my;
+  FacetSlopes slopes;
+  slopes.rms = std::sqrt((sxx + syy) / count);
+  slopes.sigma_x = std::sqrt(vx);
+  slopes.sigma_y = std::sqrt(vy);
+  slopes.kurtosis = (sx4 / count) / (vx * vx) - 3;
+  return slopes;
 }
 
 }  // namespace brdf::gonio::testing
