@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <tuple>
+
 #include "core/angles.h"
 #include "energy/lobe_quadrature.h"
 #include "energy/model_terms.h"
@@ -27,28 +29,30 @@ double MicrofacetAlbedoTable::NodeTheta(int k, double alpha) {
   return std::atan(scale / alpha);
 }
 
-MicrofacetAlbedoTable::MicrofacetAlbedoTable(const ModelInfo& info) {
-  const int nodes = kAlphaNodes * ThetaNodes();
-  e0_.assign(nodes, 0.0);
-  e1_.assign(nodes, 0.0);
+std::pair<double, double> MicrofacetAlbedoTable::IntegrateNode(const ModelInfo& info, int j,
+                                                               int k) {
   LobeQuadratureOptions options;
   options.tolerance = kTableTolerance;
   options.max_intervals = 400;
-  tbb::parallel_for(0, nodes, [&](int node) {
-    const int j = node / ThetaNodes(), k = node % ThetaNodes();
-    const double alpha = NodeAlpha(j);
-    // The lobe alone (rho_d = 0); the red channel has f0 = 0, the green f0 = 1.
-    std::vector<double> params(info.num_params, 0.0);
-    for (const ParamInfo& param : info.params) {
-      if (param.name == "f0") params[param.slot + 1] = 1.0;
-    }
-    params[info.shape_slot] = alpha;
-    const Model lobe(info, params);
-    const Vec3 wo = SphericalDirection(NodeTheta(k, alpha), 0.0);
-    const AlbedoEstimate estimate =
-        IntegrateInLobeCoordinates(ModelBrdf(lobe), wo, lobe.Lobe(), options);
-    e0_[node] = estimate.albedo[0];
-    e1_[node] = estimate.albedo[1];
+  const double alpha = NodeAlpha(j);
+  // The lobe alone (rho_d = 0); the red channel has f0 = 0, the green f0 = 1.
+  std::vector<double> params(info.num_params, 0.0);
+  for (const ParamInfo& param : info.params) {
+    if (param.name == "f0") params[param.slot + 1] = 1.0;
+  }
+  params[info.shape_slot] = alpha;
+  const Model lobe(info, params);
+  const Vec3 wo = SphericalDirection(NodeTheta(k, alpha), 0.0);
+  const AlbedoEstimate estimate =
+      IntegrateInLobeCoordinates(ModelBrdf(lobe), wo, lobe.Lobe(), options);
+  return {estimate.albedo[0], estimate.albedo[1]};
+}
+
+MicrofacetAlbedoTable::MicrofacetAlbedoTable(const ModelInfo& info) {
+  e0_.assign(NodeCount(), 0.0);
+  e1_.assign(NodeCount(), 0.0);
+  tbb::parallel_for(0, NodeCount(), [&](int node) {
+    std::tie(e0_[node], e1_[node]) = IntegrateNode(info, node / ThetaNodes(), node % ThetaNodes());
   });
 }
 

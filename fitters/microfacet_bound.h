@@ -7,9 +7,12 @@
 // Schlick's F is linear in f0, so E is too: E = (1 - f0) E_0(theta, alpha) + f0 E_1(theta, alpha),
 // with E_0 the albedo of the lobe with f0 = 0 (only Schlick's (1 - cos)^5 rise) and E_1 with
 // f0 = 1 (F = 1). The two are tabulated (Kulla & Conty, "Revisiting physically based shading at
-// Imageworks", SIGGRAPH 2017 course, tabulate the same directional albedo) at first use, by the
-// energy library's lobe quadrature of the model's own Eval (energy/lobe_quadrature.h, tolerance
-// 1e-7) — nothing is typed in by hand:
+// Imageworks", SIGGRAPH 2017 course, tabulate the same directional albedo) by the energy
+// library's lobe quadrature of the model's own Eval (energy/lobe_quadrature.h, tolerance 1e-7) —
+// nothing is typed in by hand. The build does it once: `brdf_albedo_tables` (albedo_tables.cpp)
+// integrates every microfacet model of the list and writes the values, exactly, into a source
+// file compiled into this library, so that a fit does not spend seconds of CPU on it in every
+// process; a model without a built table is integrated at its first use. The nodes:
 //   * alpha on 40 nodes, uniform in ln(alpha) over the fitter's range [1e-3, 1.5];
 //   * theta on 60 nodes 1.5 deg apart from 0 to 88.5 deg, and 24 nodes at alpha tan(theta) =
 //     0.3 ... 3000 (log-spaced), the scale on which Smith's Λ changes (it depends on nothing
@@ -27,6 +30,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "models/registry.h"
@@ -52,6 +56,13 @@ class MicrofacetAlbedoTable {
 
   // Integrates the lobe of `info` (a microfacet model) at every node; parallel (TBB).
   explicit MicrofacetAlbedoTable(const ModelInfo& info);
+  // The table of values integrated before (NodeCount() each, node j * ThetaNodes() + k).
+  MicrofacetAlbedoTable(std::vector<double> e0, std::vector<double> e1)
+      : e0_(std::move(e0)), e1_(std::move(e1)) {}
+
+  // The lobe albedo at node (j, k) of `info` for f0 = 0 and f0 = 1, integrated now.
+  static std::pair<double, double> IntegrateNode(const ModelInfo& info, int j, int k);
+  static int NodeCount() { return kAlphaNodes * ThetaNodes(); }
 
   // Incidence angle of theta node k at alpha node j, radians.
   static double NodeTheta(int k, double alpha);
@@ -108,10 +119,20 @@ class MicrofacetAlbedoTable {
   std::vector<double> e0_, e1_;
 };
 
-// The table of microfacet model M, built once per process on first use (thread-safe).
+// The values the build integrated for the model named `name`: two arrays of NodeCount()
+// (E0 then E1), or nullptr when the build made none for it.
+const double* BuiltAlbedoTable(const char* name);
+
+// The table of microfacet model M: the build's, or integrated on first use (thread-safe).
 template <typename M>
 const MicrofacetAlbedoTable& AlbedoTableOf() {
-  static const MicrofacetAlbedoTable table(FindModel(M::kName));
+  static const MicrofacetAlbedoTable table = [] {
+    const double* built = BuiltAlbedoTable(M::kName);
+    if (built == nullptr) return MicrofacetAlbedoTable(FindModel(M::kName));
+    const int n = MicrofacetAlbedoTable::NodeCount();
+    return MicrofacetAlbedoTable(std::vector<double>(built, built + n),
+                                 std::vector<double>(built + n, built + 2 * n));
+  }();
   return table;
 }
 

@@ -284,9 +284,9 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
     const size_t count = schedule.incidences[g].detectors.size();
     const std::vector<double> packed = ranks::ReadValues<double>(bytes);
     if (packed.size() != count * kDoubles) {
-      throw ComputeError("rank " + std::to_string(rank) + " returned " + std::to_string(packed.size()) +
-                  " numbers for incidence " + std::to_string(g) + "; expected " +
-                  std::to_string(count * kDoubles));
+      throw ComputeError("rank " + std::to_string(rank) + " returned " +
+                         std::to_string(packed.size()) + " numbers for incidence " +
+                         std::to_string(g) + "; expected " + std::to_string(count * kDoubles));
     }
     for (size_t k = 0; k < count; ++k) {
       const double* p = &packed[k * kDoubles];
