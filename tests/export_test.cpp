@@ -112,7 +112,9 @@ TEST(Export, GgxToGltfMetalDiffersOnlyByTheSeparableMasking) {
     for (int c = 0; c < 3; ++c) {
       EXPECT_NEAR(gltf[c], ours[c] * g_ratio, 1e-12 * ours[c]);
       EXPECT_LE(gltf[c], ours[c] * (1 + 1e-12));
-      if (wi.z() == 1.0 || wo.z() == 1.0) EXPECT_NEAR(gltf[c], ours[c], 1e-12 * ours[c]);
+      if (wi.z() == 1.0 || wo.z() == 1.0) {
+        EXPECT_NEAR(gltf[c], ours[c], 1e-12 * ours[c]);
+      }
     }
   }
   // The measured error is that masking difference, and it is not negligible at alpha 0.3.

@@ -166,8 +166,9 @@ void FitDataset(const Measurement& measurement, const DemoOptions& options,
   exporters::ExportRequest request;
   request.fit = chosen.model;
   request.samples = exporters::SamplesForExport(measurement);
-  for (exporters::Target target : exporters::AllTargets()) {
-    const exporters::ExportedMaterial material = exporters::ExportMaterial(request, target);
+  for (const exporters::ExportedMaterial& material :
+       exporters::ExportMaterials(request, exporters::AllTargets())) {
+    const exporters::Target target = material.target;
     const std::string path =
         "exports/" + dataset->name + "-" + chosen.model.name() + exporters::TargetExtension(target);
     WriteFileAtomically(out_dir + "/" + path, [&](std::ostream& out) { out << material.text; });

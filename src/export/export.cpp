@@ -17,6 +17,9 @@ namespace {
 // weight and a roughness while keeping a MERL table's export well under a second.
 constexpr size_t kMappingSamples = 4000;
 constexpr uint64_t kMappingSeed = 1;
+// Samples a power-cosine lobe is refitted as ggx on: the refit follows a noise-free model, so a
+// thousand samples pin its seven parameters.
+constexpr size_t kRefitSamples = 1000;
 // Relative errors are taken against max(f_fit, this share of the fit's largest value): below it a
 // value is too dark for a relative difference to mean anything a renderer shows.
 constexpr double kRelativeFloorShare = 1e-3;
@@ -27,9 +30,13 @@ Rgb ParamRgb(const Model& model, const char* name) {
 
 // The fit itself when the target holds its distribution; otherwise ggx refitted to the fit's
 // values on the mapping samples, with the log loss the demo fits with.
+// The ggx refit of a fit no target holds (see SourceFor), on at most kRefitSamples samples.
+MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSample>& all_samples,
+                            const std::vector<Rgb>& all_fit_values);
+
 MicrofacetSource SourceFor(const Model& fit, Target target,
                            const std::vector<fitters::FitSample>& samples,
-                           const std::vector<Rgb>& fit_values) {
+                           const std::vector<Rgb>& fit_values, MicrofacetSource* refit_cache) {
   MicrofacetSource source;
   const std::string& name = fit.name();
   if (name == "lambert") {
@@ -45,6 +52,22 @@ MicrofacetSource SourceFor(const Model& fit, Target target,
     source.f0 = ParamRgb(fit, "f0");
     source.alpha = fit.Param("alpha");
     return source;
+  }
+  if (refit_cache->model.empty()) *refit_cache = RefitAsGgx(fit, samples, fit_values);
+  return *refit_cache;
+}
+
+MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSample>& all_samples,
+                            const std::vector<Rgb>& all_fit_values) {
+  const std::string& name = fit.name();
+  MicrofacetSource source;
+  // Every kth sample: the mapping samples are already a stratified draw.
+  const size_t stride = (all_samples.size() + kRefitSamples - 1) / kRefitSamples;
+  std::vector<fitters::FitSample> samples;
+  std::vector<Rgb> fit_values;
+  for (size_t k = 0; k < all_samples.size(); k += stride) {
+    samples.push_back(all_samples[k]);
+    fit_values.push_back(all_fit_values[k]);
   }
   fitters::PreparedSamples prepared;
   prepared.weighting = "the fit's own values on its samples";
@@ -207,6 +230,11 @@ ExportError MeasureExportError(const std::function<Rgb(const Vec3&, const Vec3&)
 }
 
 ExportedMaterial ExportMaterial(const ExportRequest& request, Target target) {
+  return ExportMaterials(request, {target}).front();
+}
+
+std::vector<ExportedMaterial> ExportMaterials(const ExportRequest& request,
+                                              const std::vector<Target>& targets) {
   const std::vector<fitters::FitSample>& all = request.samples.samples;
   if (all.empty()) throw InputError(request.samples.origin, "no usable samples to export on");
   const std::vector<fitters::FitSample> mapping_samples =
@@ -216,25 +244,31 @@ ExportedMaterial ExportMaterial(const ExportRequest& request, Target target) {
   for (const fitters::FitSample& sample : mapping_samples) {
     fit_values.push_back(request.fit.Eval(sample.wi, sample.wo));
   }
-  const MicrofacetSource source = SourceFor(request.fit, target, mapping_samples, fit_values);
-  const MappingInput input{source, request.fit, mapping_samples, fit_values};
-  ExportedMaterial material;
-  switch (target) {
-    case Target::kMitsuba3:
-      material = MapToMitsuba3(input);
-      break;
-    case Target::kPbrtV4:
-      material = MapToPbrtV4(input);
-      break;
-    case Target::kGltf:
-      material = MapToGltf(input);
-      break;
+  MicrofacetSource refit_cache;
+  std::vector<ExportedMaterial> materials;
+  for (Target target : targets) {
+    const MicrofacetSource source =
+        SourceFor(request.fit, target, mapping_samples, fit_values, &refit_cache);
+    const MappingInput input{source, request.fit, mapping_samples, fit_values};
+    ExportedMaterial material;
+    switch (target) {
+      case Target::kMitsuba3:
+        material = MapToMitsuba3(input);
+        break;
+      case Target::kPbrtV4:
+        material = MapToPbrtV4(input);
+        break;
+      case Target::kGltf:
+        material = MapToGltf(input);
+        break;
+    }
+    material.source = source;
+    if (!source.via.empty()) material.exact = false;
+    material.error = MeasureExportError(material.eval, request.fit, all);
+    AnnotateText(request.fit, request.samples.origin, &material);
+    materials.push_back(std::move(material));
   }
-  material.source = source;
-  if (!source.via.empty()) material.exact = false;
-  material.error = MeasureExportError(material.eval, request.fit, all);
-  AnnotateText(request.fit, request.samples.origin, &material);
-  return material;
+  return materials;
 }
 
 std::string ResolveFitSource(const std::string& fit_path) {

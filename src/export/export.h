@@ -89,6 +89,9 @@ struct ExportedMaterial {
 // blinn-phong fit (and beckmann for targets without Beckmann) is first refitted as ggx to the
 // fit's own values on the samples, with the fitting library.
 ExportedMaterial ExportMaterial(const ExportRequest& request, Target target);
+// The same for several targets, refitting at most once.
+std::vector<ExportedMaterial> ExportMaterials(const ExportRequest& request,
+                                              const std::vector<Target>& targets);
 
 // The fit's source measurement as written in its report, resolved as given or relative to the
 // report's directory; empty when neither exists.
