@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -234,6 +235,24 @@ TEST(ExportCli, WritesTheFileAndReportsTheError) {
   EXPECT_NE(report["error"]["samples_origin"].get<std::string>().find("grid"), std::string::npos);
   EXPECT_NE(testing::ReadFileText(dir.File("m.pbrt")).find("\"string type\" [ \"diffuse\" ]"),
             std::string::npos);
+}
+
+// The error is measured on the fit's own samples: its "source", found beside the report or one
+// directory up (brdf demo's fits/ next to its measurements).
+TEST(ExportCli, MeasuresOnTheFitsSourceFoundBesideTheReport) {
+  ScratchDir dir;
+  dir.Write("cayman.astm", testing::ReadFileText(testing::DataPath("cornell-astm/cayman.astm")));
+  std::filesystem::create_directories(dir.File("fits"));
+  const std::string fit = dir.Write("fits/fit.json", R"({"model": "lambert",
+      "params": {"rho_d": [0.05, 0.02, 0.01]}, "source": "cayman.astm"})");
+  const testing::CommandResult result =
+      RunBrdf("export " + fit + " --to gltf --out " + dir.File("m.gltf") + " --json");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const nlohmann::json report = nlohmann::json::parse(result.out);
+  const std::string origin = report["error"]["samples_origin"];
+  EXPECT_NE(origin.find("cayman.astm"), std::string::npos) << origin;
+  EXPECT_EQ(origin.find("grid"), std::string::npos) << origin;
+  EXPECT_GT(report["error"]["samples"].get<int>(), 100);
 }
 
 TEST(ExportCli, BadInputIsOneLineAndExitTwo) {

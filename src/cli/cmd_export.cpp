@@ -36,7 +36,8 @@ Command AddExportCommand(CLI::App& parent) {
   app->add_option("--out", options->out, "the file to write")->required();
   app->add_option("--samples", options->samples,
                   "the measurement to measure the error on (default: the fit's \"source\", as "
-                  "written or beside the report; without it a 5-degree hemisphere grid)");
+                  "written, beside the report or one directory up; without it a 5-degree "
+                  "hemisphere grid)");
   app->add_option("--illuminant", options->illuminant, "for spectral files: D65 or E")
       ->capture_default_str();
   app->add_flag("--json", options->json, "print the export report as JSON instead of the lines");

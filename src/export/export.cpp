@@ -285,9 +285,12 @@ std::string ResolveFitSource(const std::string& fit_path) {
   const std::string source = report["source"].get<std::string>();
   std::error_code error;
   if (!source.empty() && fs::is_regular_file(source, error)) return source;
-  const fs::path beside = fs::path(fit_path).parent_path() / source;
-  if (!source.empty() && fs::path(source).is_relative() && fs::is_regular_file(beside, error)) {
-    return beside.string();
+  if (source.empty() || !fs::path(source).is_relative()) return "";
+  // Beside the report, or one directory up: brdf demo keeps fits/ next to measurements/.
+  const fs::path directory = fs::path(fit_path).parent_path();
+  for (const fs::path& base : {directory, directory.parent_path()}) {
+    const fs::path candidate = base / source;
+    if (fs::is_regular_file(candidate, error)) return candidate.string();
   }
   return "";
 }

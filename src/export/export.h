@@ -93,8 +93,8 @@ ExportedMaterial ExportMaterial(const ExportRequest& request, Target target);
 std::vector<ExportedMaterial> ExportMaterials(const ExportRequest& request,
                                               const std::vector<Target>& targets);
 
-// The fit's source measurement as written in its report, resolved as given or relative to the
-// report's directory; empty when neither exists.
+// The fit's source measurement as written in its report, resolved as given, or relative to the
+// report's directory or the one above it (brdf demo's layout); empty when none exists.
 std::string ResolveFitSource(const std::string& fit_path);
 
 // The report of an export as JSON (for --json and the demo).
