@@ -21,7 +21,7 @@ using testing::ScratchDir;
 TEST(Cli, HelpDocumentsEveryCommand) {
   const testing::CommandResult result = RunBrdf("--help");
   EXPECT_EQ(result.exit_status, 0);
-  for (const char* command : {"demo", "info", "convert", "energy"}) {
+  for (const char* command : {"demo", "info", "convert", "energy", "export"}) {
     EXPECT_NE(result.out.find(command), std::string::npos) << command;
     EXPECT_EQ(RunBrdf(std::string(command) + " --help").exit_status, 0) << command;
   }

@@ -16,6 +16,7 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "energy/albedo.h"
+#include "export/export.h"
 #include "fitters/report.h"
 #include "gonio/measure.h"
 #include "io/formats.h"
@@ -161,6 +162,20 @@ void FitDataset(const Measurement& measurement, const DemoOptions& options,
     curves.push_back({model.name() + (&fit == &chosen ? " (chosen)" : ""),
                       [&model](const Vec3& wi, const Vec3& wo) { return model.Eval(wi, wo); }});
   }
+  // The chosen fit exported to every renderer target, measured on the fit's samples.
+  exporters::ExportRequest request;
+  request.fit = chosen.model;
+  request.samples = exporters::SamplesForExport(measurement);
+  for (const exporters::ExportedMaterial& material :
+       exporters::ExportMaterials(request, exporters::AllTargets())) {
+    const exporters::Target target = material.target;
+    const std::string path =
+        "exports/" + dataset->name + "-" + chosen.model.name() + exporters::TargetExtension(target);
+    WriteFileAtomically(out_dir + "/" + path, [&](std::ostream& out) { out << material.text; });
+    dataset->exports.push_back({exporters::TargetName(target), path, material.material,
+                                material.exact, material.error.log_rmse,
+                                material.error.max_relative});
+  }
   if (!ExtractSlices(measurement).empty()) {
     const std::string slices = "images/" + dataset->name + "-slices.png";
     WriteSlicePlot(measurement, curves, "plane of incidence: " + dataset->title,
@@ -218,7 +233,7 @@ DemoResult RunDemo(const DemoOptions& options) {
   DemoResult result;
   const std::vector<std::string> bundled = FindMeasurements(options.data_dir);
   if (bundled.empty()) throw UsageError(options.data_dir + ": no measurement files found");
-  for (const char* sub : {"measurements", "fits", "images"}) {
+  for (const char* sub : {"measurements", "fits", "images", "exports"}) {
     std::error_code error;
     fs::create_directories(options.out_dir + "/" + sub, error);
     if (error) {
@@ -340,6 +355,15 @@ void WriteDemoSummaryJson(const DemoResult& result, const DemoOptions& options) 
   json["datasets"] = nlohmann::json::array();
   for (const DemoDataset& dataset : result.datasets) {
     const fitters::FitResult& fit = dataset.fits[dataset.chosen];
+    nlohmann::json exports = nlohmann::json::array();
+    for (const DemoExport& exported : dataset.exports) {
+      exports.push_back({{"target", exported.target},
+                         {"path", exported.path},
+                         {"material", exported.material},
+                         {"exact", exported.exact},
+                         {"log_rmse", exported.log_rmse},
+                         {"max_relative", exported.max_relative}});
+    }
     json["datasets"].push_back({{"name", dataset.name},
                                 {"kind", dataset.kind},
                                 {"source", dataset.source},
@@ -350,7 +374,8 @@ void WriteDemoSummaryJson(const DemoResult& result, const DemoOptions& options) 
                                 {"conserving", fit.energy.conserving},
                                 {"truth", dataset.truth},
                                 {"truth_error", dataset.truth_error},
-                                {"fits", dataset.fit_paths}});
+                                {"fits", dataset.fit_paths},
+                                {"exports", exports}});
   }
   WriteFileAtomically(options.out_dir + "/summary.json",
                       [&](std::ostream& out) { out << json.dump(2) << "\n"; });

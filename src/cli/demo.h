@@ -39,6 +39,15 @@ struct DemoImage {
   std::string path;  // relative to the output directory
 };
 
+// The chosen fit in a renderer's terms (brdf export), with its error against the fit.
+struct DemoExport {
+  std::string target;    // "mitsuba3", "pbrt-v4", "gltf"
+  std::string path;      // relative to the output directory
+  std::string material;  // the renderer's material
+  bool exact = false;
+  double log_rmse = 0, max_relative = 0;
+};
+
 struct DemoDataset {
   std::string name;              // file-name friendly
   std::string title;             // for people
@@ -53,6 +62,7 @@ struct DemoDataset {
   size_t chosen = 0;        // index into fits
   double truth_error = -1;  // max relative parameter error of the truth's model
   std::vector<DemoImage> images;
+  std::vector<DemoExport> exports;  // the chosen fit, one per export target
   double seconds = 0;
 };
 

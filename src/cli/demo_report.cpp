@@ -89,6 +89,18 @@ void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
         << Escape(dataset.fit_paths[k]) << "\">json</a></td></tr>\n";
   }
   out << "</table>\n";
+  if (!dataset.exports.empty()) {
+    out << "<p>the " << Escape(dataset.fits[dataset.chosen].model.name())
+        << " fit for renderers (<code>brdf export</code>; error of the renderer's model against "
+           "the fit on its samples):";
+    for (const DemoExport& exported : dataset.exports) {
+      out << "<br><a href=\"" << Escape(exported.path) << "\">" << Escape(exported.target)
+          << "</a>: " << Escape(exported.material) << ", "
+          << (exported.exact ? "exact" : "approximate") << ", log rmse "
+          << Number(exported.log_rmse) << ", max relative error " << Number(exported.max_relative);
+    }
+    out << "</p>\n";
+  }
   for (const std::string& warning : dataset.fits[dataset.chosen].warnings) {
     out << "<p class=\"warning\">" << Escape(warning) << "</p>\n";
   }

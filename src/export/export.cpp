@@ -1,0 +1,337 @@
+#include "export/export.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "core/errors.h"
+#include "core/text.h"
+#include "export/targets.h"
+#include "fitters/fit.h"
+
+namespace brdf::exporters {
+namespace {
+
+// Samples the renderer's parameters are chosen on: the fitting library's stratified subsample
+// (the brightest 1 % and a seeded uniform draw, reweighted), enough to pin three colours, a blend
+// weight and a roughness while keeping a MERL table's export well under a second.
+constexpr size_t kMappingSamples = 4000;
+constexpr uint64_t kMappingSeed = 1;
+// Samples a power-cosine lobe is refitted as ggx on: the refit follows a noise-free model, so a
+// thousand samples pin its seven parameters.
+constexpr size_t kRefitSamples = 1000;
+// Relative errors are taken against max(f_fit, this share of the fit's largest value): below it a
+// value is too dark for a relative difference to mean anything a renderer shows.
+constexpr double kRelativeFloorShare = 1e-3;
+
+Rgb ParamRgb(const Model& model, const char* name) {
+  return Rgb(model.Param(name, 0), model.Param(name, 1), model.Param(name, 2));
+}
+
+// The fit itself when the target holds its distribution; otherwise ggx refitted to the fit's
+// values on the mapping samples, with the log loss the demo fits with.
+// The ggx refit of a fit no target holds (see SourceFor), on at most kRefitSamples samples.
+MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSample>& all_samples,
+                            const std::vector<Rgb>& all_fit_values);
+
+MicrofacetSource SourceFor(const Model& fit, Target target,
+                           const std::vector<fitters::FitSample>& samples,
+                           const std::vector<Rgb>& fit_values, MicrofacetSource* refit_cache) {
+  MicrofacetSource source;
+  const std::string& name = fit.name();
+  if (name == "lambert") {
+    source.model = "lambert";
+    source.rho_d = ParamRgb(fit, "rho_d");
+    return source;
+  }
+  const bool target_has_beckmann = target == Target::kMitsuba3;
+  if (name == "ggx" || (name == "beckmann" && target_has_beckmann)) {
+    source.model = name;
+    source.has_lobe = true;
+    source.rho_d = ParamRgb(fit, "rho_d");
+    source.f0 = ParamRgb(fit, "f0");
+    source.alpha = fit.Param("alpha");
+    return source;
+  }
+  if (refit_cache->model.empty()) *refit_cache = RefitAsGgx(fit, samples, fit_values);
+  return *refit_cache;
+}
+
+MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSample>& all_samples,
+                            const std::vector<Rgb>& all_fit_values) {
+  const std::string& name = fit.name();
+  MicrofacetSource source;
+  // Every kth sample: the mapping samples are already a stratified draw.
+  const size_t stride = (all_samples.size() + kRefitSamples - 1) / kRefitSamples;
+  std::vector<fitters::FitSample> samples;
+  std::vector<Rgb> fit_values;
+  for (size_t k = 0; k < all_samples.size(); k += stride) {
+    samples.push_back(all_samples[k]);
+    fit_values.push_back(all_fit_values[k]);
+  }
+  fitters::PreparedSamples prepared;
+  prepared.weighting = "the fit's own values on its samples";
+  for (size_t k = 0; k < samples.size(); ++k) {
+    fitters::FitSample sample = samples[k];
+    sample.value = fit_values[k];
+    sample.target = (1.0 + sample.value * sample.cos_theta_i).log();
+    sample.scale = Rgb::Constant(std::sqrt(sample.weight));
+    prepared.samples.push_back(sample);
+  }
+  fitters::FitOptions options;
+  options.loss = fitters::Loss::kLog;
+  options.max_samples = 0;
+  // Starts around the ggx alpha whose lobe has the fit's half width (Ggx::
+  // AlphaEquivalentExponent inverted): the refit follows a known lobe, not unknown data.
+  const double exponent = std::max(fit.info().equivalent_exponent(fit.params().data()), 1.0);
+  const double alpha = std::sqrt(2.0 * std::log(2.0) / ((std::sqrt(2.0) - 1.0) * exponent));
+  options.start_alphas = {0.5 * alpha, alpha, 2.0 * alpha};
+  const fitters::FitResult refit = fitters::FitPreparedSamples(prepared, "ggx", options);
+  source.model = "ggx";
+  source.has_lobe = true;
+  source.rho_d = ParamRgb(refit.model, "rho_d");
+  source.f0 = ParamRgb(refit.model, "f0");
+  source.alpha = refit.model.Param("alpha");
+  source.via = "ggx refitted to the " + name + " fit's values on " +
+               std::to_string(samples.size()) + " of its samples (" + refit.model.ToString(4) +
+               (refit.converged ? "" : ", not converged") + ")";
+  return source;
+}
+
+std::string CommentSafe(std::string text) {
+  // "--" may not appear inside an XML comment.
+  for (size_t at = text.find("--"); at != std::string::npos; at = text.find("--")) {
+    text.replace(at, 2, "- -");
+  }
+  return text;
+}
+
+// The fit, the mapping and its measured error, as comments (XML, pbrt) or glTF extras.
+void AnnotateText(const Model& fit, const std::string& samples_origin, ExportedMaterial* m) {
+  std::vector<std::string> lines = {
+      "brdfkit export of " + fit.ToString() + " to " + TargetName(m->target) + ": " + m->material +
+          (m->exact ? " (exact)" : " (approximate)"),
+      "measured on " + samples_origin + ": log-rmse " + Num(m->error.log_rmse) +
+          ", max relative error " + Num(m->error.max_relative)};
+  if (!m->source.via.empty()) lines.push_back("mapped from " + m->source.via);
+  for (const std::string& note : m->notes) lines.push_back(note);
+  switch (m->target) {
+    case Target::kMitsuba3: {
+      std::string comment;
+      for (const std::string& line : lines) comment += "     " + CommentSafe(line) + "\n";
+      const size_t end_of_declaration = m->text.find('\n') + 1;
+      m->text.insert(end_of_declaration, "<!--\n" + comment + "-->\n");
+      break;
+    }
+    case Target::kPbrtV4: {
+      std::string comment;
+      for (const std::string& line : lines) comment += "# " + line + "\n";
+      m->text = comment + m->text;
+      break;
+    }
+    case Target::kGltf: {
+      nlohmann::json document = nlohmann::json::parse(m->text);
+      document["materials"][0]["extras"] = {{"brdfkit", lines}};
+      m->text = document.dump(2) + "\n";
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+Target ParseTarget(const std::string& name) {
+  for (Target target : AllTargets()) {
+    if (name == TargetName(target)) return target;
+  }
+  throw UsageError("unknown export target '" + name + "'; expected mitsuba3, pbrt-v4 or gltf");
+}
+
+const char* TargetName(Target target) {
+  switch (target) {
+    case Target::kMitsuba3:
+      return "mitsuba3";
+    case Target::kPbrtV4:
+      return "pbrt-v4";
+    case Target::kGltf:
+      return "gltf";
+  }
+  return "";
+}
+
+const char* TargetExtension(Target target) {
+  switch (target) {
+    case Target::kMitsuba3:
+      return ".xml";
+    case Target::kPbrtV4:
+      return ".pbrt";
+    case Target::kGltf:
+      return ".gltf";
+  }
+  return "";
+}
+
+std::vector<Target> AllTargets() { return {Target::kMitsuba3, Target::kPbrtV4, Target::kGltf}; }
+
+ExportSamples SamplesForExport(const Measurement& measurement) {
+  ExportSamples result;
+  result.samples = fitters::PrepareSamples(measurement, fitters::Loss::kL2).samples;
+  result.origin =
+      "the fit's " + std::to_string(result.samples.size()) + " samples of " + measurement.source;
+  return result;
+}
+
+ExportSamples HemisphereGridSamples(double step_deg) {
+  ExportSamples result;
+  const int theta_steps = static_cast<int>(std::ceil(90.0 / step_deg));
+  const int phi_steps = static_cast<int>(std::ceil(360.0 / step_deg));
+  for (int i = 0; i < theta_steps; ++i) {
+    const Vec3 wi = SphericalDirection(DegToRad(i * step_deg), 0.0);
+    for (int o = 0; o < theta_steps; ++o) {
+      for (int p = 0; p < (o == 0 ? 1 : phi_steps); ++p) {
+        fitters::FitSample sample;
+        sample.wi = wi;
+        sample.wo = SphericalDirection(DegToRad(o * step_deg), DegToRad(p * step_deg));
+        sample.cos_theta_i = wi.z();
+        result.samples.push_back(sample);
+      }
+    }
+  }
+  result.origin = std::to_string(result.samples.size()) + " directions of a " +
+                  FormatNumber(step_deg) + "-degree hemisphere grid (the fit's data not found)";
+  return result;
+}
+
+ExportError MeasureExportError(const std::function<Rgb(const Vec3&, const Vec3&)>& renderer,
+                               const Model& fit, const std::vector<fitters::FitSample>& samples) {
+  ExportError error;
+  error.samples = samples.size();
+  std::vector<Rgb> fit_values(samples.size());
+  Rgb largest = Rgb::Zero();
+  for (size_t k = 0; k < samples.size(); ++k) {
+    fit_values[k] = fit.Eval(samples[k].wi, samples[k].wo);
+    largest = largest.max(fit_values[k]);
+  }
+  error.relative_floor = kRelativeFloorShare * largest.maxCoeff();
+  double sum = 0, weight = 0;
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const fitters::FitSample& sample = samples[k];
+    const Rgb f = renderer(sample.wi, sample.wo);
+    const double c = sample.cos_theta_i;
+    const Rgb log_difference = (1.0 + f * c).log() - (1.0 + fit_values[k] * c).log();
+    sum += sample.weight * log_difference.square().sum();
+    weight += 3 * sample.weight;
+    const Rgb relative = (f - fit_values[k]).abs() / fit_values[k].max(error.relative_floor);
+    if (error.relative_floor > 0)
+      error.max_relative = std::max(error.max_relative, relative.maxCoeff());
+  }
+  error.log_rmse = weight > 0 ? std::sqrt(sum / weight) : 0.0;
+  return error;
+}
+
+ExportedMaterial ExportMaterial(const ExportRequest& request, Target target) {
+  return ExportMaterials(request, {target}).front();
+}
+
+std::vector<ExportedMaterial> ExportMaterials(const ExportRequest& request,
+                                              const std::vector<Target>& targets) {
+  const std::vector<fitters::FitSample>& all = request.samples.samples;
+  if (all.empty()) throw InputError(request.samples.origin, "no usable samples to export on");
+  const std::vector<fitters::FitSample> mapping_samples =
+      fitters::Subsample(all, kMappingSamples, kMappingSeed);
+  std::vector<Rgb> fit_values;
+  fit_values.reserve(mapping_samples.size());
+  for (const fitters::FitSample& sample : mapping_samples) {
+    fit_values.push_back(request.fit.Eval(sample.wi, sample.wo));
+  }
+  MicrofacetSource refit_cache;
+  std::vector<ExportedMaterial> materials;
+  for (Target target : targets) {
+    const MicrofacetSource source =
+        SourceFor(request.fit, target, mapping_samples, fit_values, &refit_cache);
+    const MappingInput input{source, request.fit, mapping_samples, fit_values};
+    ExportedMaterial material;
+    switch (target) {
+      case Target::kMitsuba3:
+        material = MapToMitsuba3(input);
+        break;
+      case Target::kPbrtV4:
+        material = MapToPbrtV4(input);
+        break;
+      case Target::kGltf:
+        material = MapToGltf(input);
+        break;
+    }
+    material.source = source;
+    if (!source.via.empty()) material.exact = false;
+    material.error = MeasureExportError(material.eval, request.fit, all);
+    AnnotateText(request.fit, request.samples.origin, &material);
+    materials.push_back(std::move(material));
+  }
+  return materials;
+}
+
+std::string ResolveFitSource(const std::string& fit_path) {
+  namespace fs = std::filesystem;
+  nlohmann::json report;
+  try {
+    report = nlohmann::json::parse(ReadFileBytes(fit_path, int64_t{16} << 20));
+  } catch (const std::exception&) {
+    return "";
+  }
+  if (!report.is_object() || !report.contains("source") || !report["source"].is_string()) {
+    return "";
+  }
+  const std::string source = report["source"].get<std::string>();
+  std::error_code error;
+  if (!source.empty() && fs::is_regular_file(source, error)) return source;
+  if (source.empty() || !fs::path(source).is_relative()) return "";
+  // Beside the report, or one directory up: brdf demo keeps fits/ next to measurements/.
+  const fs::path directory = fs::path(fit_path).parent_path();
+  for (const fs::path& base : {directory, directory.parent_path()}) {
+    const fs::path candidate = base / source;
+    if (fs::is_regular_file(candidate, error)) return candidate.string();
+  }
+  return "";
+}
+
+nlohmann::json ExportJson(const ExportedMaterial& material, const std::string& fit_path,
+                          const std::string& out_path, const std::string& samples_origin) {
+  const MicrofacetSource& source = material.source;
+  nlohmann::json json = {{"fit", fit_path},
+                         {"target", TargetName(material.target)},
+                         {"out", out_path},
+                         {"material", material.material},
+                         {"exact", material.exact},
+                         {"parameters", material.parameters},
+                         {"notes", material.notes},
+                         {"error",
+                          {{"log_rmse", material.error.log_rmse},
+                           {"max_relative", material.error.max_relative},
+                           {"relative_floor", material.error.relative_floor},
+                           {"samples", material.error.samples},
+                           {"samples_origin", samples_origin}}},
+                         {"mapped_from",
+                          {{"model", source.model},
+                           {"rho_d", {source.rho_d[0], source.rho_d[1], source.rho_d[2]}},
+                           {"f0", {source.f0[0], source.f0[1], source.f0[2]}},
+                           {"alpha", source.alpha},
+                           {"via", source.via}}}};
+  return json;
+}
+
+std::string ExportSummary(const ExportedMaterial& material, const std::string& out_path,
+                          const std::string& samples_origin) {
+  std::string text =
+      "target      " + std::string(TargetName(material.target)) + " -> " + out_path + "\n";
+  text += "material    " + material.material + (material.exact ? "  (exact)" : "  (approximate)") +
+          "\n";
+  if (!material.source.via.empty()) text += "mapped from " + material.source.via + "\n";
+  for (const std::string& note : material.notes) text += "mapping     " + note + "\n";
+  text += "error       log-rmse " + Num(material.error.log_rmse) + ", max relative error " +
+          Num(material.error.max_relative) + " (values below " +
+          Num(material.error.relative_floor) + " sr^-1 taken as that), on " + samples_origin + "\n";
+  return text;
+}
+
+}  // namespace brdf::exporters

@@ -1,0 +1,166 @@
+// glTF 2.0 material (glTF 2.0 specification, Appendix B "BRDF Implementation"; the ratified
+// KHR_materials_specular extension's "Implementation" section):
+//   specular_brdf = D G / (4 |N·L| |N·V|), GGX D with alpha = roughness², separable Smith
+//                   G = G1(L) G1(V) with G1 = 2 |N·X| / (|N·X| + sqrt(α² + (1 − α²)(N·X)²)),
+//                   which is 1 / (1 + Λ_GGX)
+//   metal         F = baseColor + (1 − baseColor)(1 − V·H)^5;  f = F specular_brdf
+//   dielectric    F = f0 + (f90 − f0)(1 − V·H)^5, f0 = min(0.04 specularColor, 1) specular,
+//                 f90 = specular;  f = F specular_brdf + (1 − max(F)) baseColor / π
+//   material      f = mix(dielectric, metal, metallic)
+// Schlick's Fresnel is glTF's own, so F maps exactly; D maps exactly through roughness = sqrt(α).
+#include <algorithm>
+#include <cmath>
+
+#include "export/targets.h"
+#include "models/microfacet.h"
+
+namespace brdf::exporters {
+namespace {
+
+// The dielectric f0 of glTF's default index of refraction, 1.5: ((1.5 − 1)/(1.5 + 1))².
+constexpr double kDefaultDielectricF0 = 0.04;
+
+// A metallic-roughness material with the KHR_materials_specular factors.
+struct GltfMaterial {
+  Rgb base_color = Rgb::Ones();
+  double metallic = 1, roughness = 1;
+  double specular = 1;               // specularFactor
+  Rgb specular_color = Rgb::Ones();  // specularColorFactor
+  bool uses_specular_extension = false;
+
+  double Alpha() const { return roughness * roughness; }
+  MicrofacetLobe Lobe() const {
+    MicrofacetLobe lobe;
+    lobe.distribution = Distribution::kGgx;
+    lobe.masking = Masking::kSeparable;
+    lobe.alpha = Alpha();
+    return lobe;
+  }
+  Rgb DielectricFresnel(double cos_d) const {
+    const Rgb f0 = (kDefaultDielectricF0 * specular_color).min(1.0) * specular;
+    return f0 + (specular - f0) * models::SchlickFresnel(cos_d, 0.0);
+  }
+  Rgb MetalFresnel(double cos_d) const {
+    return base_color + (1.0 - base_color) * models::SchlickFresnel(cos_d, 0.0);
+  }
+  Rgb Eval(const Vec3& wi, const Vec3& wo) const {
+    const HalfVectorGeometry g = Geometry(wi, wo);
+    if (!g.above) return Rgb::Zero();
+    // A roughness of 0 is a mirror, which no BRDF holds; the mapping never writes one.
+    const double lobe = Lobe().Eval(g);
+    Rgb f = Rgb::Zero();
+    if (metallic < 1) {
+      const Rgb fresnel = DielectricFresnel(g.cos_theta_d);
+      f += (1.0 - metallic) * (fresnel * lobe + (1.0 - fresnel.maxCoeff()) * base_color * kInvPi);
+    }
+    if (metallic > 0) f += metallic * MetalFresnel(g.cos_theta_d) * lobe;
+    return f;
+  }
+  nlohmann::json Json() const {
+    nlohmann::json material;
+    material["name"] = "brdfkit";
+    material["pbrMetallicRoughness"] = {
+        {"baseColorFactor", {base_color[0], base_color[1], base_color[2], 1.0}},
+        {"metallicFactor", metallic},
+        {"roughnessFactor", roughness}};
+    if (uses_specular_extension) {
+      material["extensions"]["KHR_materials_specular"] = {
+          {"specularFactor", specular},
+          {"specularColorFactor", {specular_color[0], specular_color[1], specular_color[2]}}};
+    }
+    return material;
+  }
+};
+
+Rgb Clamp01(const Rgb& rgb) { return rgb.max(0.0).min(1.0); }
+
+}  // namespace
+
+ExportedMaterial MapToGltf(const MappingInput& input) {
+  const MicrofacetSource& source = input.source;
+  ExportedMaterial material;
+  material.target = Target::kGltf;
+  GltfMaterial chosen;
+  if (!source.has_lobe) {
+    // specularFactor 0 turns the dielectric's Fresnel off (f0 = f90 = 0): f = baseColor/π.
+    chosen.base_color = Clamp01(source.rho_d);
+    chosen.metallic = 0;
+    chosen.roughness = 1;
+    chosen.specular = 0;
+    chosen.uses_specular_extension = true;
+    material.material = "pbrMetallicRoughness, metallic 0, KHR_materials_specular specularFactor 0";
+    material.exact = (chosen.base_color == source.rho_d).all();
+    material.notes.push_back(
+        "baseColor = rho_d with specularFactor 0 (no specular reflection): exact, f = "
+        "baseColor/pi");
+    if (!material.exact) material.notes.push_back("rho_d above 1 was clamped to baseColor 1");
+  } else {
+    const double roughness = std::sqrt(std::min(source.alpha, 1.0));
+    // Metal: F = Schlick(baseColor = f0) exactly, no diffuse term.
+    GltfMaterial metal;
+    metal.base_color = Clamp01(source.f0);
+    metal.metallic = 1;
+    metal.roughness = roughness;
+    // Dielectric: specularColor = f0 / 0.04 with specular 1 makes f0 and f90 = 1 Schlick's;
+    // the diffuse term is weighted by 1 − max(F), so baseColor is fitted to the fit's floor.
+    GltfMaterial dielectric;
+    dielectric.metallic = 0;
+    dielectric.roughness = roughness;
+    dielectric.specular = 1;
+    dielectric.specular_color = source.f0 / kDefaultDielectricF0;
+    dielectric.uses_specular_extension = true;
+    dielectric.base_color = Rgb::Zero();
+    const GltfMaterial lobe_only = dielectric;
+    dielectric.base_color = FitDiffuseScale(
+        input,
+        [&](const Vec3& wi, const Vec3& wo) {
+          const HalfVectorGeometry g = Geometry(wi, wo);
+          if (!g.above) return 0.0;
+          return (1.0 - lobe_only.DielectricFresnel(g.cos_theta_d).maxCoeff()) * kInvPi;
+        },
+        [&](const Vec3& wi, const Vec3& wo) { return lobe_only.Eval(wi, wo); });
+    auto error_of = [&](const GltfMaterial& candidate) {
+      return MappingLogRmse([&](const Vec3& wi, const Vec3& wo) { return candidate.Eval(wi, wo); },
+                            input);
+    };
+    const bool use_metal = source.rho_d.maxCoeff() <= 0 || error_of(metal) <= error_of(dielectric);
+    chosen = use_metal ? metal : dielectric;
+    const TermDifferences terms = MeasureTermDifferences(input, chosen.Lobe(), [&](double cos_d) {
+      return use_metal ? chosen.MetalFresnel(cos_d) : chosen.DielectricFresnel(cos_d);
+    });
+    material.material = use_metal ? "pbrMetallicRoughness, metallic 1"
+                                  : "pbrMetallicRoughness, metallic 0, KHR_materials_specular";
+    material.notes.push_back("D: exact (GGX; roughness = sqrt(alpha), glTF's alpha = roughness^2)" +
+                             std::string(source.alpha > 1 ? "; alpha above 1 clamped to 1" : ""));
+    material.notes.push_back(
+        "F: exact (glTF's Fresnel is Schlick's" +
+        std::string(use_metal ? ", f0 = baseColor" : ", f0 = 0.04 specularColorFactor, f90 = 1") +
+        "; |F - F_Schlick| <= " + Num(terms.max_fresnel) + " on these samples)");
+    material.notes.push_back(
+        "G: glTF multiplies G1(L) G1(V); ours is height-correlated: G differs by up to " +
+        Num(100 * terms.max_g_relative) + " % on these samples");
+    if (use_metal && source.rho_d.maxCoeff() > 0) {
+      material.notes.push_back(
+          "the fit's diffuse term is left out: metallic 1 followed the fit "
+          "more closely than the dielectric's coupled diffuse");
+    }
+    if (!use_metal) {
+      material.notes.push_back("diffuse: glTF weights baseColor/pi by 1 - max(F); baseColor " +
+                               Num(chosen.base_color[0]) + ", " + Num(chosen.base_color[1]) + ", " +
+                               Num(chosen.base_color[2]) +
+                               " chosen to follow the fit's diffuse floor");
+    }
+  }
+  material.parameters = chosen.Json();
+  material.eval = [chosen](const Vec3& wi, const Vec3& wo) { return chosen.Eval(wi, wo); };
+  nlohmann::json document;
+  document["asset"] = {{"version", "2.0"}, {"generator", "brdfkit export"}};
+  if (chosen.uses_specular_extension) {
+    document["extensionsUsed"] = {"KHR_materials_specular"};
+  }
+  document["materials"] = {material.parameters};
+  material.text = document.dump(2) + "\n";
+  return material;
+}
+
+}  // namespace brdf::exporters

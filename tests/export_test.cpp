@@ -1,0 +1,279 @@
+// brdf export (src/export/): where a renderer's model is the fit's, the exported material
+// evaluates to the fit; where it is not, the difference is exactly the term that differs, and it
+// is measured. Values are read back from the written files, not from the mapping's structs.
+#include "export/export.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "core/angles.h"
+#include "export/renderer_terms.h"
+#include "models/microfacet.h"
+#include "models/model_string.h"
+#include "test_util.h"
+
+namespace brdf::exporters {
+namespace {
+
+using testing::RunBrdf;
+using testing::ScratchDir;
+
+// Directions over the hemisphere, in and out of the plane of incidence.
+std::vector<std::pair<Vec3, Vec3>> DirectionPairs() {
+  std::vector<std::pair<Vec3, Vec3>> pairs;
+  for (double theta_i : {0.0, 10.0, 35.0, 60.0, 80.0}) {
+    for (double theta_o : {0.0, 20.0, 45.0, 70.0, 85.0}) {
+      for (double phi_o : {0.0, 60.0, 180.0}) {
+        pairs.push_back({SphericalDirection(DegToRad(theta_i), 0.0),
+                         SphericalDirection(DegToRad(theta_o), DegToRad(phi_o))});
+      }
+    }
+  }
+  return pairs;
+}
+
+ExportedMaterial Export(const std::string& model, Target target) {
+  ExportRequest request;
+  request.fit = ParseModel(model);
+  request.samples = HemisphereGridSamples(10.0);
+  return ExportMaterial(request, target);
+}
+
+// The first "value" of <rgb name="NAME" value="..."/> in Mitsuba XML.
+Rgb MitsubaRgb(const std::string& xml, const std::string& name) {
+  std::smatch match;
+  const std::regex pattern("<rgb name=\"" + name + "\" value=\"([^,]+), ([^,]+), ([^\"]+)\"/>");
+  EXPECT_TRUE(std::regex_search(xml, match, pattern)) << name << " in\n" << xml;
+  return Rgb(std::stod(match[1]), std::stod(match[2]), std::stod(match[3]));
+}
+
+// The first "rgb NAME" [ r g b ] of pbrt-v4 scene text.
+Rgb PbrtRgb(const std::string& text, const std::string& name) {
+  std::smatch match;
+  const std::regex pattern("\"rgb " + name + "\" \\[ (\\S+) (\\S+) (\\S+) \\]");
+  EXPECT_TRUE(std::regex_search(text, match, pattern)) << name << " in\n" << text;
+  return Rgb(std::stod(match[1]), std::stod(match[2]), std::stod(match[3]));
+}
+
+// Smith Λ of GGX, written here from Walter et al. 2007 (eq. 34 with a = 1/(α tan θ)).
+double GgxLambda(double cos_theta, double alpha) {
+  const double tan2 = (1.0 - cos_theta * cos_theta) / (cos_theta * cos_theta);
+  return (std::sqrt(1.0 + alpha * alpha * tan2) - 1.0) / 2.0;
+}
+
+TEST(Export, LambertIsExactInEveryRenderer) {
+  const std::string fit = "lambert:rho_d=0.71,0.283,0.0417";
+  const Model model = ParseModel(fit);
+  for (Target target : AllTargets()) {
+    const ExportedMaterial material = Export(fit, target);
+    EXPECT_TRUE(material.exact) << TargetName(target);
+    EXPECT_LT(material.error.log_rmse, 1e-12) << TargetName(target);
+    EXPECT_LT(material.error.max_relative, 1e-12) << TargetName(target);
+    // The file holds the reflectance that, as the renderer's f = R/π, is the fit.
+    Rgb reflectance;
+    if (target == Target::kMitsuba3) reflectance = MitsubaRgb(material.text, "reflectance");
+    if (target == Target::kPbrtV4) reflectance = PbrtRgb(material.text, "reflectance");
+    if (target == Target::kGltf) {
+      const nlohmann::json gltf = nlohmann::json::parse(material.text);
+      const nlohmann::json& pbr = gltf["materials"][0]["pbrMetallicRoughness"];
+      for (int c = 0; c < 3; ++c) reflectance[c] = pbr["baseColorFactor"][c].get<double>();
+      EXPECT_EQ(gltf["materials"][0]["extensions"]["KHR_materials_specular"]["specularFactor"], 0);
+    }
+    for (const auto& [wi, wo] : DirectionPairs()) {
+      const Rgb expected = model.Eval(wi, wo);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(reflectance[c] / kPi, expected[c], 1e-6 * expected[c]) << TargetName(target);
+        EXPECT_NEAR(material.eval(wi, wo)[c], expected[c], 1e-12) << TargetName(target);
+      }
+    }
+  }
+}
+
+// glTF's metal: D (roughness² = alpha) and F (Schlick's, f0 = baseColor) are ours, so the glTF
+// BRDF is the fit times G_separable / G_height-correlated = (1 + Λi + Λo) / ((1 + Λi)(1 + Λo)):
+// equal where Λ(wi) or Λ(wo) is 0 (either direction at the normal), lower everywhere else.
+TEST(Export, GgxToGltfMetalDiffersOnlyByTheSeparableMasking) {
+  const double alpha = 0.3;
+  const std::string fit = "ggx:rho_d=0:f0=0.95,0.64,0.54:alpha=0.3";
+  const Model model = ParseModel(fit);
+  const ExportedMaterial material = Export(fit, Target::kGltf);
+  EXPECT_FALSE(material.exact);
+  const nlohmann::json pbr =
+      nlohmann::json::parse(material.text)["materials"][0]["pbrMetallicRoughness"];
+  EXPECT_EQ(pbr["metallicFactor"], 1.0);
+  EXPECT_NEAR(std::pow(pbr["roughnessFactor"].get<double>(), 2), alpha, 1e-15);
+  for (const auto& [wi, wo] : DirectionPairs()) {
+    const double li = GgxLambda(wi.z(), alpha), lo = GgxLambda(wo.z(), alpha);
+    const double g_ratio = (1.0 + li + lo) / ((1.0 + li) * (1.0 + lo));
+    const Rgb ours = model.Eval(wi, wo), gltf = material.eval(wi, wo);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(gltf[c], ours[c] * g_ratio, 1e-12 * ours[c]);
+      EXPECT_LE(gltf[c], ours[c] * (1 + 1e-12));
+      if (wi.z() == 1.0 || wo.z() == 1.0) {
+        EXPECT_NEAR(gltf[c], ours[c], 1e-12 * ours[c]);
+      }
+    }
+  }
+  // The measured error is that masking difference, and it is not negligible at alpha 0.3.
+  EXPECT_GT(material.error.max_relative, 0.01);
+}
+
+// pbrt-v4's conductor: D and G are ours (Trowbridge-Reitz, height-correlated Smith); only the
+// Fresnel factor differs, exact conductor Fresnel with the file's eta and k against Schlick's.
+TEST(Export, GgxToPbrtConductorDiffersOnlyByFresnel) {
+  const std::string fit = "ggx:rho_d=0:f0=0.9,0.6,0.3:alpha=0.2";
+  const Model model = ParseModel(fit);
+  const ExportedMaterial material = Export(fit, Target::kPbrtV4);
+  EXPECT_EQ(material.material, "conductor");
+  EXPECT_NE(material.text.find("\"bool remaproughness\" [ false ]"), std::string::npos);
+  const Rgb eta = PbrtRgb(material.text, "eta"), k = PbrtRgb(material.text, "k");
+  for (const auto& [wi, wo] : DirectionPairs()) {
+    const Rgb ours = model.Eval(wi, wo), pbrt = material.eval(wi, wo);
+    const Vec3 half_vector = (wi + wo).normalized();
+    const double cos_d = wi.dot(half_vector);
+    for (int c = 0; c < 3; ++c) {
+      const double schlick = models::SchlickFresnel(cos_d, model.Param("f0", c));
+      const double conductor = models::FresnelReflectance(cos_d, eta[c], k[c]);
+      EXPECT_NEAR(pbrt[c], ours[c] * conductor / schlick, 1e-9 * ours[c]);
+    }
+  }
+  // At the specular peak seen head on (wi = wo: cos_d = 1) the conductor's reflectance is f0:
+  // there the export is the fit.
+  for (double theta : {0.0, 30.0, 60.0}) {
+    const Vec3 w = SphericalDirection(DegToRad(theta), 0.4);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(material.eval(w, w)[c], model.Eval(w, w)[c], 1e-6 * model.Eval(w, w)[c]);
+    }
+  }
+}
+
+// Mitsuba 3 (roughconductor, ggx): D exact; G separable, F conductor. At the normal both
+// differences vanish.
+TEST(Export, GgxToMitsubaIsTheFitAtNormalIncidenceAndView) {
+  const std::string fit = "ggx:rho_d=0:f0=0.7:alpha=0.15";
+  const Model model = ParseModel(fit);
+  const ExportedMaterial material = Export(fit, Target::kMitsuba3);
+  EXPECT_NE(material.text.find("<string name=\"distribution\" value=\"ggx\"/>"), std::string::npos);
+  const Vec3 normal(0, 0, 1);
+  EXPECT_NEAR(material.eval(normal, normal)[0], model.Eval(normal, normal)[0],
+              1e-6 * model.Eval(normal, normal)[0]);
+}
+
+// Walter et al. 2007 give their rational Beckmann G1 (which Mitsuba 3 evaluates) as within
+// 0.35 % of the exact 1 / (1 + Λ).
+TEST(Export, MitsubaBeckmannMaskingIsWithinWaltersStatedError) {
+  double worst = 0;
+  for (double alpha : {0.05, 0.2, 0.5, 1.0}) {
+    for (double theta = 1; theta < 89.5; theta += 0.5) {
+      const double cos_theta = std::cos(DegToRad(theta));
+      const double exact = 1.0 / (1.0 + models::Beckmann::Lambda<double>(cos_theta, alpha));
+      worst = std::max(worst, std::abs(BeckmannG1Rational(cos_theta, alpha) - exact) / exact);
+    }
+  }
+  EXPECT_LT(worst, 0.0035);
+  EXPECT_GT(worst, 0.0);
+}
+
+// A lobe over a diffuse base becomes a blend of diffuse and conductor in Mitsuba 3 and pbrt-v4:
+// far from the highlight it must still show the fit's diffuse floor.
+TEST(Export, DiffusePlusLobeKeepsTheDiffuseFloor) {
+  const std::string fit = "ggx:rho_d=0.4,0.2,0.1:f0=0.04:alpha=0.1";
+  const Model model = ParseModel(fit);
+  for (Target target : {Target::kMitsuba3, Target::kPbrtV4, Target::kGltf}) {
+    const ExportedMaterial material = Export(fit, target);
+    EXPECT_FALSE(material.exact);
+    // Off the peak (wi at 30°, wo at 40° on the same side) the lobe is negligible.
+    const Vec3 wi = SphericalDirection(DegToRad(30), 0), wo = SphericalDirection(DegToRad(40), 0);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(material.eval(wi, wo)[c], model.Eval(wi, wo)[c], 0.05 * model.Eval(wi, wo)[c])
+          << TargetName(target) << " " << material.material;
+    }
+    EXPECT_LT(material.error.log_rmse, 0.05) << TargetName(target);
+  }
+}
+
+// A power-cosine lobe is no renderer's: it is refitted as ggx, and the error is measured.
+TEST(Export, BlinnPhongIsRefittedAsGgxAndMeasured) {
+  const ExportedMaterial material = Export("blinn-phong:rho_d=0.3:rho_s=0.2:m=150", Target::kGltf);
+  EXPECT_FALSE(material.exact);
+  EXPECT_EQ(material.source.model, "ggx");
+  EXPECT_NE(material.source.via.find("refitted"), std::string::npos);
+  EXPECT_GT(material.error.log_rmse, 0.0);
+  EXPECT_LT(material.error.log_rmse, 0.1);
+}
+
+TEST(Export, MitsubaXmlIsWellFormed) {
+  ScratchDir dir;
+  for (const std::string fit :
+       {"lambert:rho_d=0.5", "ggx:rho_d=0:f0=0.9:alpha=0.2", "ggx:rho_d=0.3:f0=0.04:alpha=0.1",
+        "beckmann:rho_d=0.2:f0=0.05:alpha=0.3"}) {
+    const std::string path = dir.Write("material.xml", Export(fit, Target::kMitsuba3).text);
+    const testing::CommandResult parsed = testing::RunCommand(
+        "/usr/bin/python3 -c 'import sys, xml.dom.minidom as m; d = m.parse(sys.argv[1]); "
+        "print(d.documentElement.tagName, len(d.getElementsByTagName(\"bsdf\")))' " +
+        path);
+    EXPECT_EQ(parsed.exit_status, 0) << fit << "\n" << parsed.err;
+    EXPECT_EQ(parsed.out.substr(0, 6), "scene ") << fit;
+  }
+}
+
+TEST(ExportCli, WritesTheFileAndReportsTheError) {
+  ScratchDir dir;
+  const std::string fit = dir.Write("fit.json", R"({"model": "lambert",
+      "params": {"rho_d": [0.5, 0.4, 0.3]}, "source": "absent.csv"})");
+  const testing::CommandResult result =
+      RunBrdf("export " + fit + " --to pbrt-v4 --out " + dir.File("m.pbrt") + " --json");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const nlohmann::json report = nlohmann::json::parse(result.out);
+  EXPECT_EQ(report["target"], "pbrt-v4");
+  EXPECT_EQ(report["exact"], true);
+  EXPECT_LT(report["error"]["max_relative"].get<double>(), 1e-12);
+  EXPECT_NE(report["error"]["samples_origin"].get<std::string>().find("grid"), std::string::npos);
+  EXPECT_NE(testing::ReadFileText(dir.File("m.pbrt")).find("\"string type\" [ \"diffuse\" ]"),
+            std::string::npos);
+}
+
+// The error is measured on the fit's own samples: its "source", found beside the report or one
+// directory up (brdf demo's fits/ next to its measurements).
+TEST(ExportCli, MeasuresOnTheFitsSourceFoundBesideTheReport) {
+  ScratchDir dir;
+  dir.Write("cayman.astm", testing::ReadFileText(testing::DataPath("cornell-astm/cayman.astm")));
+  std::filesystem::create_directories(dir.File("fits"));
+  const std::string fit = dir.Write("fits/fit.json", R"({"model": "lambert",
+      "params": {"rho_d": [0.05, 0.02, 0.01]}, "source": "cayman.astm"})");
+  const testing::CommandResult result =
+      RunBrdf("export " + fit + " --to gltf --out " + dir.File("m.gltf") + " --json");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  const nlohmann::json report = nlohmann::json::parse(result.out);
+  const std::string origin = report["error"]["samples_origin"];
+  EXPECT_NE(origin.find("cayman.astm"), std::string::npos) << origin;
+  EXPECT_EQ(origin.find("grid"), std::string::npos) << origin;
+  EXPECT_GT(report["error"]["samples"].get<int>(), 100);
+}
+
+TEST(ExportCli, BadInputIsOneLineAndExitTwo) {
+  ScratchDir dir;
+  const std::string not_a_fit = dir.Write("data.json", R"({"rows": [1, 2, 3]})");
+  const std::string fit =
+      dir.Write("fit.json", R"({"model": "lambert", "params": {"rho_d": 0.5}})");
+  const testing::CommandResult wrong_file =
+      RunBrdf("export " + not_a_fit + " --to gltf --out " + dir.File("a.gltf"));
+  EXPECT_EQ(wrong_file.exit_status, 2);
+  EXPECT_NE(wrong_file.err.find(not_a_fit), std::string::npos) << wrong_file.err;
+  EXPECT_EQ(testing::CountLines(wrong_file.err), 1) << wrong_file.err;
+  const testing::CommandResult wrong_target =
+      RunBrdf("export " + fit + " --to blender --out " + dir.File("b.blend"));
+  EXPECT_EQ(wrong_target.exit_status, 2);
+  EXPECT_NE(wrong_target.err.find("mitsuba3, pbrt-v4 or gltf"), std::string::npos)
+      << wrong_target.err;
+  EXPECT_EQ(RunBrdf("export " + fit + " --out " + dir.File("c.xml")).exit_status, 2);
+  // Nothing written: the three inputs above (data.json, fit.json) only.
+  EXPECT_EQ(dir.CountEntries(), 2);
+}
+
+}  // namespace
+}  // namespace brdf::exporters
