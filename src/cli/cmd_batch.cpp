@@ -108,12 +108,9 @@ std::string FitOneFile(const BatchOptions& options, const fitters::FitOptions& f
     ReadOptions read_options;
     read_options.illuminant = ParseIlluminant(options.illuminant);
     const Measurement measurement = ReadMeasurement(path, read_options);
-    fitters::Selection selection;
-    const bool automatic = options.model == "auto";
-    const fitters::FitResult fit = automatic
-                                       ? fitters::SelectAndFit(measurement, fit_options, &selection)
-                                       : fitters::FitModel(measurement, options.model, fit_options);
-    result["report"] = fitters::FitReportJson(fit, path, automatic ? &selection : nullptr);
+    const fitters::ModelFit model_fit =
+        fitters::FitModelOrAuto(measurement, options.model, fit_options);
+    result["report"] = fitters::FitReportJson(model_fit.fit, path, model_fit.selection_or_null());
   } catch (const ComputeError& error) {
     result["error"] = error.what();
     result["exit_status"] = 3;

@@ -73,12 +73,10 @@ Command AddFitCommand(CLI::App& parent) {
             read_options.illuminant = ParseIlluminant(options->illuminant);
             const Measurement measurement = ReadMeasurement(options->path, read_options);
 
-            fitters::Selection selection;
-            const bool automatic = options->model == "auto";
-            const fitters::FitResult fit =
-                automatic ? fitters::SelectAndFit(measurement, fit_options, &selection)
-                          : fitters::FitModel(measurement, options->model, fit_options);
-            const fitters::Selection* chosen = automatic ? &selection : nullptr;
+            const fitters::ModelFit model_fit =
+                fitters::FitModelOrAuto(measurement, options->model, fit_options);
+            const fitters::FitResult& fit = model_fit.fit;
+            const fitters::Selection* chosen = model_fit.selection_or_null();
             const nlohmann::json report = fitters::FitReportJson(fit, options->path, chosen);
             if (!options->out.empty()) {
               WriteFileAtomically(options->out,

@@ -156,23 +156,30 @@ bool PathExists(const std::string& path) {
 
 }  // namespace
 
-std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
-  if (IsFitReportPath(spec)) return std::make_unique<ModelMaterial>(LoadModel(spec));
-  if (!PathExists(spec)) {
-    const std::string name = spec.substr(0, spec.find(':'));
-    for (const ModelInfo& info : ModelRegistry()) {
-      if (info.name == name) return std::make_unique<ModelMaterial>(LoadModel(spec));
-    }
-    std::string names;
-    for (const ModelInfo& info : ModelRegistry()) names += (names.empty() ? "" : ", ") + info.name;
-    throw InputError(spec, "no such file, and not a model string (models: " + names + ")");
-  }
-  Measurement measurement = ReadMeasurement(spec);
+std::unique_ptr<Material> ModelMaterialOf(Model model) {
+  return std::make_unique<ModelMaterial>(std::move(model));
+}
+
+std::unique_ptr<Material> MeasurementMaterialOf(const Measurement& measurement) {
   if (measurement.tabulated != nullptr) {
     const std::string lookup_name = measurement.tabulated->LookupName();
     return std::make_unique<MeasuredTableMaterial>(MeasuredBrdfOf(measurement), lookup_name);
   }
   return std::make_unique<TabulatedMaterial>(measurement);
+}
+
+std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
+  if (IsFitReportPath(spec)) return ModelMaterialOf(LoadModel(spec));
+  if (!PathExists(spec)) {
+    const std::string name = spec.substr(0, spec.find(':'));
+    for (const ModelInfo& info : ModelRegistry()) {
+      if (info.name == name) return ModelMaterialOf(LoadModel(spec));
+    }
+    std::string names;
+    for (const ModelInfo& info : ModelRegistry()) names += (names.empty() ? "" : ", ") + info.name;
+    throw InputError(spec, "no such file, and not a model string (models: " + names + ")");
+  }
+  return MeasurementMaterialOf(ReadMeasurement(spec));
 }
 
 }  // namespace brdf
