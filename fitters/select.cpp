@@ -80,4 +80,12 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
   return result;
 }
 
+ModelFit FitModelOrAuto(const Measurement& measurement, const std::string& model,
+                        const FitOptions& options) {
+  if (model != "auto") return {FitModel(measurement, model, options), std::nullopt};
+  Selection selection;
+  FitResult fit = SelectAndFit(measurement, options, &selection);
+  return {std::move(fit), std::move(selection)};
+}
+
 }  // namespace brdf::fitters

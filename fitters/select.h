@@ -9,6 +9,7 @@
 // variables and almost nothing else, and lambert wins.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,5 +39,16 @@ const std::vector<std::string>& AutoCandidates();
 // receives every candidate's fit in AutoCandidates() order.
 FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options,
                        Selection* selection, std::vector<FitResult>* all_fits = nullptr);
+
+// What `--model M|auto` means, in one place for `brdf fit`, `brdf batch` and the Python module:
+// "auto" runs SelectAndFit and returns its Selection; a model name runs FitModel (no selection).
+struct ModelFit {
+  FitResult fit;
+  std::optional<Selection> selection;
+
+  const Selection* selection_or_null() const { return selection ? &*selection : nullptr; }
+};
+ModelFit FitModelOrAuto(const Measurement& measurement, const std::string& model,
+                        const FitOptions& options);
 
 }  // namespace brdf::fitters

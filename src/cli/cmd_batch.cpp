@@ -103,12 +103,9 @@ std::string FitOneFile(const BatchOptions& options, const fitters::FitOptions& f
   nlohmann::json result;
   try {
     const Measurement measurement = ReadMeasurement(path, options.fit.ToReadOptions());
-    fitters::Selection selection;
-    const bool automatic = options.fit.Automatic();
-    const fitters::FitResult fit =
-        automatic ? fitters::SelectAndFit(measurement, fit_options, &selection)
-                  : fitters::FitModel(measurement, options.fit.model, fit_options);
-    result["report"] = fitters::FitReportJson(fit, path, automatic ? &selection : nullptr);
+    const fitters::ModelFit model_fit =
+        fitters::FitModelOrAuto(measurement, options.fit.model, fit_options);
+    result["report"] = fitters::FitReportJson(model_fit.fit, path, model_fit.selection_or_null());
   } catch (const ComputeError& error) {
     result["error"] = error.what();
     result["exit_status"] = 3;

@@ -6,47 +6,16 @@
 #include <chrono>
 #include <iostream>
 #include <memory>
-#include <nlohmann/json.hpp>
 
 #include "cli/albedo_plot.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
 #include "core/progress.h"
 #include "core/text.h"
-#include "energy/albedo.h"
-#include "energy/measured.h"
-#include "models/model_source.h"
+#include "energy/albedo_source.h"
 
 namespace brdf::cli {
 namespace {
-
-nlohmann::json RgbJson(const Rgb& value) { return {value[0], value[1], value[2]}; }
-
-// DESIGN §7's fields, and what a script needs to trust them (errors, coverage, notes).
-nlohmann::json CurveJson(const AlbedoCurve& curve, double seconds) {
-  nlohmann::json albedo = nlohmann::json::array();
-  for (const AlbedoPoint& point : curve.points) {
-    albedo.push_back({{"theta_deg", point.theta_deg},
-                      {"rgb", RgbJson(point.estimate.albedo)},
-                      {"error", RgbJson(point.estimate.error)},
-                      {"coverage", point.estimate.coverage}});
-  }
-  return {{"source", curve.source},
-          {"method", AlbedoMethodName(curve.method)},
-          {"max_albedo", RgbJson(curve.max_albedo)},
-          {"max_albedo_error", RgbJson(curve.error_at_max)},
-          {"theta_deg_at_max",
-           {curve.theta_deg_at_max[0], curve.theta_deg_at_max[1], curve.theta_deg_at_max[2]}},
-          {"albedo", albedo},
-          {"conserving", curve.conserving()},
-          {"excess", curve.excess()},
-          {"verdict", curve.Verdict()},
-          {"min_coverage", curve.min_coverage},
-          {"notes", curve.notes},
-          {"warnings", curve.warnings},
-          {"evaluations", curve.evaluations},
-          {"time_s", seconds}};
-}
 
 void WriteAlbedoCsv(const AlbedoCurve& curve, const std::string& path) {
   WriteFileAtomically(path, [&](std::ostream& out) {
@@ -101,13 +70,8 @@ Command AddEnergyCommand(CLI::App& parent) {
             options->albedo.Validate();
             const auto start = std::chrono::steady_clock::now();
             Progress progress("energy", options->albedo.theta_steps, options->quiet);
-            AlbedoCurve curve;
-            if (IsModelSpec(options->source)) {
-              curve = ModelAlbedoCurve(LoadModel(options->source), options->albedo, &progress);
-            } else {
-              curve = MeasuredAlbedoCurve(LoadMeasuredBrdf(options->source), options->albedo,
-                                          &progress);
-            }
+            const AlbedoCurve curve =
+                SourceAlbedoCurve(options->source, options->albedo, &progress);
             const double seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             if (!options->out.empty()) WriteAlbedoCsv(curve, options->out);
@@ -116,7 +80,7 @@ Command AddEnergyCommand(CLI::App& parent) {
               for (const std::string& warning : curve.warnings) {
                 std::cerr << "brdf energy: warning: " << warning << "\n";
               }
-              std::cout << CurveJson(curve, seconds).dump(2) << "\n";
+              std::cout << AlbedoCurveJson(curve, seconds).dump(2) << "\n";
             } else {
               std::cout << curve.Report();
             }

@@ -42,12 +42,10 @@ Command AddFitCommand(CLI::App& parent) {
             const Measurement measurement =
                 ReadMeasurement(options->path, options->fit.ToReadOptions());
 
-            fitters::Selection selection;
-            const bool automatic = options->fit.Automatic();
-            const fitters::FitResult fit =
-                automatic ? fitters::SelectAndFit(measurement, fit_options, &selection)
-                          : fitters::FitModel(measurement, options->fit.model, fit_options);
-            const fitters::Selection* chosen = automatic ? &selection : nullptr;
+            const fitters::ModelFit model_fit =
+                fitters::FitModelOrAuto(measurement, options->fit.model, fit_options);
+            const fitters::FitResult& fit = model_fit.fit;
+            const fitters::Selection* chosen = model_fit.selection_or_null();
             const nlohmann::json report = fitters::FitReportJson(fit, options->path, chosen);
             if (!options->out.empty()) {
               WriteFileAtomically(options->out,

@@ -15,6 +15,7 @@
 #include "hdr/image_files.h"
 #include "hdr/pipeline.h"
 #include "render/comparison_sheet.h"
+#include "render/scene_lighting.h"
 #include "render/sphere.h"
 
 namespace brdf::cli {
@@ -96,21 +97,11 @@ Command AddRenderCommand(CLI::App& parent) {
         if (options->exr_type != "half" && options->exr_type != "float") {
           throw UsageError("--exr-type: expected half or float, got '" + options->exr_type + "'");
         }
-        std::vector<DirectionalLight> lights;
-        for (const std::string& text : options->lights) {
-          lights.push_back(ParseDirectionalLight(text));
+        const SceneLighting lighting =
+            MakeSceneLighting(options->lights, options->presets, options->env);
+        for (const std::string& warning : lighting.warnings) {
+          std::cerr << "brdf render: warning: " << warning << "\n";
         }
-        for (const std::string& name : options->presets) lights.push_back(PresetLight(name));
-        std::optional<Environment> environment;
-        if (!options->env.empty()) {
-          int64_t broken = 0;
-          environment = Environment::Load(options->env, &broken);
-          if (broken > 0) {
-            std::cerr << "brdf render: warning: " << options->env << ": " << broken
-                      << " pixels with NaN or infinite values, replaced by 0\n";
-          }
-        }
-        if (lights.empty() && !environment) lights.push_back(PresetLight("office"));
         const std::unique_ptr<Material> material = LoadMaterial(options->material);
         const std::unique_ptr<Material> versus =
             options->versus.empty() ? nullptr : LoadMaterial(options->versus);
@@ -118,10 +109,12 @@ Command AddRenderCommand(CLI::App& parent) {
         RenderResult render, render_versus;
         {
           Progress progress("render", options->render.size * (versus ? 2 : 1), options->quiet);
-          const Environment* lighting = environment ? &*environment : nullptr;
-          render = RenderSphere(*material, lights, lighting, options->render, &progress);
+          const Environment* environment = lighting.environment_or_null();
+          render =
+              RenderSphere(*material, lighting.lights, environment, options->render, &progress);
           if (versus) {
-            render_versus = RenderSphere(*versus, lights, lighting, options->render, &progress);
+            render_versus =
+                RenderSphere(*versus, lighting.lights, environment, options->render, &progress);
           }
         }
         if (!options->exr.empty()) {

@@ -23,7 +23,14 @@ class UsageError : public Error {
 // always names the file and, where it applies, the line or byte offset.
 class InputError : public Error {
  public:
-  InputError(const std::string& path, const std::string& what) : Error(path + ": " + what) {}
+  InputError(const std::string& path, const std::string& what)
+      : Error(path + ": " + what), path_(path) {}
+  // The file (or argument) named at the start of the message, for callers that report it on
+  // its own (the Python module's InputError.path).
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
 };
 
 // A text file broken at a given line (1-based).
@@ -51,7 +58,12 @@ class ByteError : public InputError {
 // An output that cannot be written: exit status 2 (the user named a bad path).
 class OutputError : public Error {
  public:
-  OutputError(const std::string& path, const std::string& what) : Error(path + ": " + what) {}
+  OutputError(const std::string& path, const std::string& what)
+      : Error(path + ": " + what), path_(path) {}
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
 };
 
 // A computation that failed (e.g. a fit that did not converge): exit status 3.

@@ -148,14 +148,21 @@ class TabulatedMaterial : public Material {
 
 }  // namespace
 
-std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
-  if (IsModelSpec(spec)) return std::make_unique<ModelMaterial>(LoadModel(spec));
-  Measurement measurement = ReadMeasurement(spec);
+std::unique_ptr<Material> ModelMaterialOf(Model model) {
+  return std::make_unique<ModelMaterial>(std::move(model));
+}
+
+std::unique_ptr<Material> MeasurementMaterialOf(const Measurement& measurement) {
   if (measurement.tabulated != nullptr) {
     const std::string lookup_name = measurement.tabulated->LookupName();
     return std::make_unique<MeasuredTableMaterial>(MeasuredBrdfOf(measurement), lookup_name);
   }
   return std::make_unique<TabulatedMaterial>(measurement);
+}
+
+std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
+  if (IsModelSpec(spec)) return ModelMaterialOf(LoadModel(spec));
+  return MeasurementMaterialOf(ReadMeasurement(spec));
 }
 
 }  // namespace brdf

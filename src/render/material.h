@@ -16,8 +16,10 @@
 #include <optional>
 #include <string>
 
+#include "core/measurement.h"
 #include "core/vec.h"
 #include "energy/integrand.h"
+#include "models/registry.h"
 
 namespace brdf {
 
@@ -38,5 +40,10 @@ class Material {
 // A model string or FIT.json (LoadModel), else a measurement file. Throws UsageError /
 // InputError naming the argument.
 std::unique_ptr<Material> LoadMaterial(const std::string& spec);
+// The same for a model and for a measurement in memory (the reader's evaluator when it has
+// one, else the tabulated inverse-distance interpolant). Throws InputError naming the source
+// when no sample is usable.
+std::unique_ptr<Material> ModelMaterialOf(Model model);
+std::unique_ptr<Material> MeasurementMaterialOf(const Measurement& measurement);
 
 }  // namespace brdf
