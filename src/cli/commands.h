@@ -24,5 +24,6 @@ Command AddEnergyCommand(CLI::App& parent);
 Command AddTonemapCommand(CLI::App& parent);
 Command AddRenderCommand(CLI::App& parent);
 Command AddBatchCommand(CLI::App& parent);
+Command AddPlanCommand(CLI::App& parent);
 
 }  // namespace brdf::cli

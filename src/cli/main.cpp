@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
       brdf::cli::AddConvertCommand(app), brdf::cli::AddMeasureCommand(app),
       brdf::cli::AddFitCommand(app),     brdf::cli::AddEnergyCommand(app),
       brdf::cli::AddRenderCommand(app),  brdf::cli::AddTonemapCommand(app),
-      brdf::cli::AddBatchCommand(app),
+      brdf::cli::AddBatchCommand(app),   brdf::cli::AddPlanCommand(app),
   };
 
   try {
