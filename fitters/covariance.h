@@ -161,9 +161,9 @@ inline bool SandwichCovariance(const Eigen::MatrixXd& full_a, const Eigen::Matri
 // fit of these samples will have, before any data exist (experiment_design.h). One parallel
 // pass over the residual blocks, summed in a fixed order.
 template <typename ModelType>
-void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
-                  const Variables& v, const std::vector<double>* expected_squared,
-                  Eigen::MatrixXd* a, Eigen::MatrixXd* b) {
+void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem, const Variables& v,
+                  const std::vector<double>* expected_squared, Eigen::MatrixXd* a,
+                  Eigen::MatrixXd* b) {
   Variables at = v;
   std::vector<double*> blocks;
   std::vector<int> sizes;
@@ -174,7 +174,8 @@ void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
   std::vector<int64_t> first_row(residual_blocks.size() + 1, 0);
   for (size_t k = 0; k < residual_blocks.size(); ++k) {
     first_row[k + 1] =
-        first_row[k] + problem->GetCostFunctionForResidualBlock(residual_blocks[k])->num_residuals();
+        first_row[k] +
+        problem->GetCostFunctionForResidualBlock(residual_blocks[k])->num_residuals();
   }
   struct Sums {
     Eigen::MatrixXd a, b;

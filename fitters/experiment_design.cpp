@@ -172,12 +172,12 @@ DesignResult Choose(const Model& model, const std::vector<DesignPoint>& candidat
   size_t step = 0;
   while (result.chosen.size() < budget) {
     if (queue.empty()) {
-      throw UsageError("the constraints leave room for only " +
-                       std::to_string(result.chosen.size()) + " geometries of the " +
-                       std::to_string(candidates.size()) + " candidates at min_separation_deg=" +
-                       FormatNumber(options.min_separation_deg) + "; --budget " +
-                       std::to_string(budget) +
-                       " needs a smaller separation, wider candidates or a smaller budget");
+      throw UsageError(
+          "the constraints leave room for only " + std::to_string(result.chosen.size()) +
+          " geometries of the " + std::to_string(candidates.size()) +
+          " candidates at min_separation_deg=" + FormatNumber(options.min_separation_deg) +
+          "; --budget " + std::to_string(budget) +
+          " needs a smaller separation, wider candidates or a smaller budget");
     }
     const auto [value, negative_index, stamp] = queue.top();
     queue.pop();
@@ -235,7 +235,8 @@ double LogDet(const Model& model, const std::vector<DesignPoint>& points) {
 }
 
 template <typename M>
-PredictedErrors Predict(const Model& model, const Measurement& measurement) {
+PredictedErrors Predict(const Model& model, const Measurement& measurement,
+                        double common_scale_variance) {
   DesignState<M> state(model);
   const PreparedSamples prepared = PrepareSamples(measurement, Loss::kL2);
   if (prepared.samples.size() != measurement.samples.size() || !measurement.has_sigma()) {
@@ -245,14 +246,25 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement) {
   std::vector<double> expected(3 * prepared.samples.size());
   for (size_t k = 0; k < prepared.samples.size(); ++k) {
     for (int c = 0; c < 3; ++c) {
-      expected[3 * k + c] =
-          std::pow(prepared.samples[k].scale[c] * measurement.sigma[k][c], 2);
+      expected[3 * k + c] = std::pow(prepared.samples[k].scale[c] * measurement.sigma[k][c], 2);
     }
   }
   Variables v = state.v;
   auto problem = state.fitter.BuildProblem(prepared.samples, &v);
   Eigen::MatrixXd a, b, covariance;
   JacobianSums(state.fitter, problem.get(), state.v, &expected, &a, &b);
+  if (common_scale_variance > 0) {
+    // Every value times (1 + e): the residuals change by -scale f e, the variables by
+    // A^-1 g e with g = sum J^T scale f, which adds var(e) g g^T to B.
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(a.rows());
+    ForEachJacobianRow(state.fitter, problem.get(), state.v,
+                       [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
+                         const FitSample& sample = prepared.samples[row / 3];
+                         const int c = static_cast<int>(row % 3);
+                         g += jacobian * (sample.scale[c] * sample.value[c]);
+                       });
+    b += common_scale_variance * g * g.transpose();
+  }
   PredictedErrors errors;
   errors.note = state.held_note;
   errors.stderr_values.assign(M::kNumParams, std::numeric_limits<double>::quiet_NaN());
@@ -321,7 +333,8 @@ std::vector<std::string> DesignWarnings(const Model& model) {
     }
     if constexpr (kHasLobe<M>) {
       const double shape = model.params()[M::kShape];
-      const double clamped = std::clamp(std::log(shape), ShapeLowerBound<M>(), ShapeUpperBound<M>());
+      const double clamped =
+          std::clamp(std::log(shape), ShapeLowerBound<M>(), ShapeUpperBound<M>());
       if (std::abs(std::log(shape) - clamped) > 1e-12 || !(shape > 0)) {
         warnings.push_back(model.info().shape_param().name + " = " + FormatNumber(shape, 6) +
                            " lies outside the fit's range [" +
@@ -342,14 +355,14 @@ DesignResult ChooseDesign(const Model& model, const std::vector<DesignPoint>& ca
 }
 
 double InformationLogDet(const Model& model, const std::vector<DesignPoint>& points) {
-  return VisitModelType(model.name(), [&](auto model_type) {
-    return LogDet<decltype(model_type)>(model, points);
-  });
+  return VisitModelType(
+      model.name(), [&](auto model_type) { return LogDet<decltype(model_type)>(model, points); });
 }
 
-PredictedErrors PredictErrors(const Model& model, const Measurement& measurement) {
+PredictedErrors PredictErrors(const Model& model, const Measurement& measurement,
+                              double common_scale_variance) {
   return VisitModelType(model.name(), [&](auto model_type) {
-    return Predict<decltype(model_type)>(model, measurement);
+    return Predict<decltype(model_type)>(model, measurement, common_scale_variance);
   });
 }
 

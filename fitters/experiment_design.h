@@ -79,7 +79,11 @@ struct PredictedErrors {
 // `model` at the geometries of `measurement`, whose `sigma` is the noise its readings will
 // carry: the fit's own sample weights (PrepareSamples: solid angle, the file's weights,
 // sigma) and the sandwich covariance with the expected squared residuals in place of measured
-// ones. `measurement`'s values are not used.
-PredictedErrors PredictErrors(const Model& model, const Measurement& measurement);
+// ones. `measurement`'s values must be the model's (noise-free). `common_scale_variance` is the
+// relative variance of an error shared by every value of the run (the instrument's reference):
+// it moves the fit along the direction a common scale of all values moves it, whatever the
+// geometries.
+PredictedErrors PredictErrors(const Model& model, const Measurement& measurement,
+                              double common_scale_variance = 0);
 
 }  // namespace brdf::fitters

@@ -140,6 +140,10 @@ Rgb Calibration::ExpectedSigma(const Rgb& reading, double cos_theta_o) const {
   return sigma * ideal_reference_reading_ / cos_theta_o;
 }
 
+double Calibration::ReferenceRelativeVariance() const {
+  return reference_counts_variance_ / (reference_expected_counts_ * reference_expected_counts_);
+}
+
 void Calibration::Calibrate(const Rgb& reading, double cos_theta_o, uint64_t rng_index, Rgb* value,
                             Rgb* sigma) const {
   Ratio(reading, nullptr, rng_index, value, sigma);
@@ -318,9 +322,9 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
     const size_t count = schedule.incidences[g].detectors.size();
     const std::vector<double> packed = ranks::ReadValues<double>(bytes);
     if (packed.size() != count * kDoubles) {
-      throw ComputeError("rank " + std::to_string(rank) + " returned " + std::to_string(packed.size()) +
-                  " numbers for incidence " + std::to_string(g) + "; expected " +
-                  std::to_string(count * kDoubles));
+      throw ComputeError("rank " + std::to_string(rank) + " returned " +
+                         std::to_string(packed.size()) + " numbers for incidence " +
+                         std::to_string(g) + "; expected " + std::to_string(count * kDoubles));
     }
     for (size_t k = 0; k < count; ++k) {
       const double* p = &packed[k * kDoubles];

@@ -263,9 +263,8 @@ std::vector<std::pair<Vec3, Vec3>> UniformPairs(int count, double theta_max_deg)
   // (EqualAreaCells orders them from the pole outward), sized so the cap holds them.
   std::vector<std::pair<Vec3, Vec3>> pairs;
   const double cos_max = std::cos(DegToRad(theta_max_deg));
-  const int incidences =
-      std::clamp(static_cast<int>(std::lround(std::cbrt(count))), 1,
-                 std::min(count, std::max(1, static_cast<int>(theta_max_deg))));
+  const int incidences = std::clamp(static_cast<int>(std::lround(std::cbrt(count))), 1,
+                                    std::min(count, std::max(1, static_cast<int>(theta_max_deg))));
   for (int g = 0; g < incidences; ++g) {
     const int detectors = count / incidences + (g < count % incidences ? 1 : 0);
     const double cos_i = 1.0 - (1.0 - cos_max) * (g + 0.5) / incidences;

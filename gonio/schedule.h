@@ -37,7 +37,7 @@ struct Incidence {
 };
 
 struct Schedule {
-  std::string spec;         // as given, for the metadata
+  std::string spec;  // as given, for the metadata
   std::string kind;  // "inplane", "hemisphere", "merl", "equal-area", "adaptive", "uniform", "file"
   bool has_weight = false;  // detectors carry solid-angle weights (equal-area)
   // The geometries were chosen one by one (file:, e.g. a plan): each reading stands for itself,

@@ -49,6 +49,10 @@ Constraints ParseConstraints(const std::string& text) {
     }
     const std::string key(Trim(part.substr(0, equals)));
     const std::string value_text(Trim(part.substr(equals + 1)));
+    if (key != "theta_max" && key != "min_separation_deg") {
+      throw UsageError("--constraints: unknown key '" + key +
+                       "' (known: theta_max, min_separation_deg)");
+    }
     double value = 0;
     std::istringstream stream(value_text);
     if (!(stream >> value) || !stream.eof() || !std::isfinite(value)) {
@@ -68,20 +72,18 @@ Constraints ParseConstraints(const std::string& text) {
                          " is impossible: it must lie in [0, 90] degrees");
       }
       constraints.min_separation_deg = value;
-    } else {
-      throw UsageError("--constraints: unknown key '" + key +
-                       "' (known: theta_max, min_separation_deg)");
     }
   }
   return constraints;
 }
 
 // The geometries of `schedule` the instrument can take (the detector arm does not shadow the
-// beam) with both polar angles at most `theta_max_deg`, with the sigma it will state.
+// beam) with both polar angles at most `theta_max_deg`, with the sigma it will state. With a
+// `budget`, the candidates of a plan: none, or fewer than the budget, is a usage error.
 std::vector<fitters::DesignPoint> Geometries(const gonio::Schedule& schedule,
                                              const gonio::Instrument& instrument,
-                                             const gonio::NoiseModel& noise,
-                                             double theta_max_deg) {
+                                             const gonio::NoiseModel& noise, double theta_max_deg,
+                                             size_t budget = 0) {
   const double cos_blocked = std::cos(DegToRad(instrument.blocked_within_deg));
   const double cos_max = std::cos(DegToRad(theta_max_deg)) - 1e-12;
   std::vector<fitters::DesignPoint> points;
@@ -92,9 +94,19 @@ std::vector<fitters::DesignPoint> Geometries(const gonio::Schedule& schedule,
       points.push_back({incidence.wi, detector.wo, Rgb::Ones()});
     }
   }
-  tbb::parallel_for(size_t{0}, points.size(), [&](size_t k) {
-    points[k].sigma = noise.Sigma(points[k].wi, points[k].wo);
-  });
+  if (budget > 0 && points.empty()) {
+    throw UsageError("impossible constraint set: no candidate of '" + schedule.spec +
+                     "' has both polar angles at most theta_max=" + FormatNumber(theta_max_deg) +
+                     " deg and the detector at least " +
+                     FormatNumber(instrument.blocked_within_deg) + " deg from the beam");
+  }
+  if (budget > points.size()) {
+    throw UsageError("--budget " + std::to_string(budget) + " is larger than the candidate set (" +
+                     std::to_string(points.size()) +
+                     " geometries within the constraints): lower it or widen the candidates");
+  }
+  tbb::parallel_for(size_t{0}, points.size(),
+                    [&](size_t k) { points[k].sigma = noise.Sigma(points[k].wi, points[k].wo); });
   return points;
 }
 
@@ -175,9 +187,10 @@ Command AddPlanCommand(CLI::App& parent) {
       "The plan is a CSV of theta_i,phi_i,theta_o,phi_o (degrees) in the order chosen: its "
       "first K rows are the plan for a budget of K. Measure it with 'brdf measure --schedule "
       "file:PLAN.csv'. See docs/planning.md.");
-  app->add_option("--model", options->model,
-                  "the material to plan for: a model string (e.g. ggx:rho_d=0.1:f0=0.04:alpha=0.05) "
-                  "or a fit report of a first measurement (FIT.json)")
+  app->add_option(
+         "--model", options->model,
+         "the material to plan for: a model string (e.g. ggx:rho_d=0.1:f0=0.04:alpha=0.05) "
+         "or a fit report of a first measurement (FIT.json)")
       ->required();
   app->add_option("--budget", options->budget, "direction pairs to choose")
       ->required()
@@ -222,17 +235,10 @@ Command AddPlanCommand(CLI::App& parent) {
             const gonio::Schedule candidate_schedule = gonio::MakeSchedule(options->candidates);
             Progress progress("planning", 4, options->quiet || options->json);
             const std::vector<fitters::DesignPoint> candidates =
-                Geometries(candidate_schedule, instrument, noise, constraints.theta_max_deg);
-            if (candidates.empty()) {
-              throw UsageError(
-                  "impossible constraint set: no candidate of '" + options->candidates +
-                  "' has both polar angles at most theta_max=" +
-                  FormatNumber(constraints.theta_max_deg) + " deg and the detector at least " +
-                  FormatNumber(instrument.blocked_within_deg) + " deg from the beam");
-            }
+                Geometries(candidate_schedule, instrument, noise, constraints.theta_max_deg,
+                           static_cast<size_t>(options->budget));
             progress.Advance();
-            const fitters::DesignResult result =
-                fitters::ChooseDesign(model, candidates, design);
+            const fitters::DesignResult result = fitters::ChooseDesign(model, candidates, design);
             progress.Advance();
             std::vector<fitters::DesignPoint> plan;
             for (size_t k : result.chosen) plan.push_back(candidates[k]);
@@ -256,14 +262,23 @@ Command AddPlanCommand(CLI::App& parent) {
             progress.Advance();
             std::vector<Comparison> rows = {
                 {"plan", "file:" + options->out, plan.size(), result.log_det, {}},
-                {"uniform", "uniform:count=" + std::to_string(uniform.size()) +
-                                ":theta_max=" + FormatNumber(theta_max),
-                 uniform.size(), fitters::InformationLogDet(model, uniform), {}},
-                {"default", "hemisphere", standard.size(),
-                 fitters::InformationLogDet(model, standard), {}}};
-            rows[0].errors = fitters::PredictErrors(model, Predicted(model, plan, true));
-            rows[1].errors = fitters::PredictErrors(model, Predicted(model, uniform, false));
-            rows[2].errors = fitters::PredictErrors(model, Predicted(model, standard, false));
+                {"uniform",
+                 "uniform:count=" + std::to_string(uniform.size()) +
+                     ":theta_max=" + FormatNumber(theta_max),
+                 uniform.size(),
+                 fitters::InformationLogDet(model, uniform),
+                 {}},
+                {"default",
+                 "hemisphere",
+                 standard.size(),
+                 fitters::InformationLogDet(model, standard),
+                 {}}};
+            rows[0].errors = fitters::PredictErrors(model, Predicted(model, plan, true),
+                                                    noise.CommonScaleVariance());
+            rows[1].errors = fitters::PredictErrors(model, Predicted(model, uniform, false),
+                                                    noise.CommonScaleVariance());
+            rows[2].errors = fitters::PredictErrors(model, Predicted(model, standard, false),
+                                                    noise.CommonScaleVariance());
             progress.Advance();
 
             WriteFileAtomically(options->out, [&](std::ostream& out) {
@@ -273,8 +288,7 @@ Command AddPlanCommand(CLI::App& parent) {
               out << "# instrument: "
                   << (options->instrument.empty() ? "default" : options->instrument) << "\n";
               out << "# constraints: theta_max=" << FormatNumber(constraints.theta_max_deg)
-                  << ",min_separation_deg=" << FormatNumber(constraints.min_separation_deg)
-                  << "\n";
+                  << ",min_separation_deg=" << FormatNumber(constraints.min_separation_deg) << "\n";
               out << "# candidates: " << options->candidates << " (" << candidates.size()
                   << " geometries)\n";
               out << "# rows are in the order chosen: the first K are the plan for a budget of K\n";
@@ -282,8 +296,8 @@ Command AddPlanCommand(CLI::App& parent) {
               for (size_t k = 0; k < plan.size(); ++k) {
                 const DegreesText wi = DirectionDegreesText(plan[k].wi);
                 const DegreesText wo = DirectionDegreesText(plan[k].wo);
-                out << wi.theta << "," << wi.phi << "," << wo.theta << "," << wo.phi << ","
-                    << k + 1 << "\n";
+                out << wi.theta << "," << wi.phi << "," << wo.theta << "," << wo.phi << "," << k + 1
+                    << "\n";
               }
             });
 
