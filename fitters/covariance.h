@@ -33,24 +33,14 @@ inline constexpr double kSaturated = 23.0;
 // identifiable.
 inline constexpr double kRankTolerance = 1e-13;
 
-// Covariance of the fitter's variables (d, s, shape) at `v`; held variables carry NaN on the
-// diagonal. False, with `note`, when A is rank-deficient.
+// The fitter's variables held out of the covariance at `v`: logistic variables pushed against
+// their bound, and a vanished power-cosine lobe's exponent (with `note` saying so).
 template <typename ModelType>
-bool VariableCovariance(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
-                        const Variables& v, Eigen::MatrixXd* covariance, std::string* note) {
+std::vector<bool> HeldVariables(const ModelFitter<ModelType>& fitter, const Variables& v,
+                                std::string* note) {
   constexpr bool kLobed = ModelFitter<ModelType>::kLobed;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  std::vector<double*> blocks;
-  std::vector<int> sizes;
-  const int s_size = fitter.SpecularSize();
-  Variables at = v;
-  blocks.push_back(at.d);
-  sizes.push_back(3);
-  if (kLobed) {
-    blocks.insert(blocks.end(), {at.s, at.shape});
-    sizes.insert(sizes.end(), {s_size, 1});
-  }
   const int n = fitter.FreeVariables();
+  const int s_size = fitter.SpecularSize();
   std::vector<bool> held(n, false);
   // Only a power-cosine lobe can vanish: a microfacet lobe with f0 = 0 still has Schlick's rise.
   bool lobe_vanished = kLobed && ModelType::kFamily == models::ModelFamily::kPowerCosine;
@@ -63,58 +53,80 @@ bool VariableCovariance(const ModelFitter<ModelType>& fitter, ceres::Problem* pr
     held[n - 1] = true;
     *note = "the lobe vanished (rho_s at 0): its exponent is not identifiable";
   }
+  return held;
+}
 
+// The parameter blocks of the fitter's problem at `v` (copied into `at`) and their sizes.
+template <typename ModelType>
+void ProblemBlocks(const ModelFitter<ModelType>& fitter, Variables* at,
+                   std::vector<double*>* blocks, std::vector<int>* sizes) {
+  blocks->assign({at->d});
+  sizes->assign({3});
+  if (ModelFitter<ModelType>::kLobed) {
+    blocks->insert(blocks->end(), {at->s, at->shape});
+    sizes->insert(sizes->end(), {fitter.SpecularSize(), 1});
+  }
+}
+
+// Evaluates one residual block and calls visit(r, jacobian_row, residual) for its rows.
+template <typename Visit>
+void VisitBlockRows(const ceres::CostFunction* cost, const std::vector<double*>& blocks,
+                    const std::vector<int>& sizes, int n, Visit&& visit) {
+  const int rows = cost->num_residuals();
+  std::vector<double> residuals(rows);
+  std::vector<std::vector<double>> jacobians(blocks.size());
+  std::vector<double*> jacobian_pointers(blocks.size());
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    jacobians[b].resize(rows * sizes[b]);
+    jacobian_pointers[b] = jacobians[b].data();
+  }
+  cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data());
+  Eigen::VectorXd row(n);
+  for (int r = 0; r < rows; ++r) {
+    int column = 0;
+    for (size_t b = 0; b < blocks.size(); ++b) {
+      for (int k = 0; k < sizes[b]; ++k) row[column++] = jacobians[b][r * sizes[b] + k];
+    }
+    visit(r, row, residuals[r]);
+  }
+}
+
+// Calls visit(row_index, jacobian_row, residual) for every residual row of `problem` at `v`
+// (rows numbered in the problem's order: sample k's channel c is row 3 k + c), from the same
+// cost functions Ceres differentiates; blocks in order, each evaluating its batches in parallel.
+template <typename ModelType, typename Visit>
+void ForEachJacobianRow(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                        const Variables& v, Visit&& visit) {
+  Variables at = v;
+  std::vector<double*> blocks;
+  std::vector<int> sizes;
+  ProblemBlocks(fitter, &at, &blocks, &sizes);
   std::vector<ceres::ResidualBlockId> residual_blocks;
   problem->GetResidualBlocks(&residual_blocks);
-  struct Sums {
-    Eigen::MatrixXd a, b;
-  };
-  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
-  // One residual block per chunk (each evaluates in parallel), summed in a fixed order.
-  const Sums sums = DeterministicReduce(
-      static_cast<int64_t>(residual_blocks.size()), 1, Sums{zero, zero},
-      [&](int64_t begin, int64_t end, Sums partial) {
-        std::vector<double> residuals;
-        std::vector<std::vector<double>> jacobians(blocks.size());
-        std::vector<double*> jacobian_pointers(blocks.size());
-        Eigen::VectorXd row(n);
-        for (int64_t index = begin; index < end; ++index) {
-          const ceres::CostFunction* cost =
-              problem->GetCostFunctionForResidualBlock(residual_blocks[index]);
-          const int rows = cost->num_residuals();
-          residuals.resize(rows);
-          for (size_t b = 0; b < blocks.size(); ++b) {
-            jacobians[b].resize(rows * sizes[b]);
-            jacobian_pointers[b] = jacobians[b].data();
-          }
-          cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data());
-          for (int r = 0; r < rows; ++r) {
-            int column = 0;
-            for (size_t b = 0; b < blocks.size(); ++b) {
-              for (int k = 0; k < sizes[b]; ++k) row[column++] = jacobians[b][r * sizes[b] + k];
-            }
-            partial.a.template selfadjointView<Eigen::Lower>().rankUpdate(row);
-            partial.b.template selfadjointView<Eigen::Lower>().rankUpdate(
-                row, residuals[r] * residuals[r]);
-          }
-        }
-        return partial;
-      },
-      [](Sums x, const Sums& y) {
-        x.a += y.a;
-        x.b += y.b;
-        return x;
-      });
+  int64_t first_row = 0;
+  for (const ceres::ResidualBlockId id : residual_blocks) {
+    const ceres::CostFunction* cost = problem->GetCostFunctionForResidualBlock(id);
+    VisitBlockRows(cost, blocks, sizes, fitter.FreeVariables(),
+                   [&](int r, const Eigen::VectorXd& row, double residual) {
+                     visit(first_row + r, row, residual);
+                   });
+    first_row += cost->num_residuals();
+  }
+}
 
-  // Invert A on the free (not held) variables.
+// The sandwich A^-1 B A^-1 on the variables not `held` (held ones get NaN on the diagonal).
+// False, with `note`, when A is rank-deficient there.
+inline bool SandwichCovariance(const Eigen::MatrixXd& full_a, const Eigen::MatrixXd& full_b,
+                               const std::vector<bool>& held, Eigen::MatrixXd* covariance,
+                               std::string* note) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const int n = static_cast<int>(held.size());
   std::vector<int> free;
   for (int k = 0; k < n; ++k) {
     if (!held[k]) free.push_back(k);
   }
   const int m = static_cast<int>(free.size());
   Eigen::MatrixXd a(m, m), b(m, m);
-  const Eigen::MatrixXd full_a = sums.a.template selfadjointView<Eigen::Lower>();
-  const Eigen::MatrixXd full_b = sums.b.template selfadjointView<Eigen::Lower>();
   for (int i = 0; i < m; ++i) {
     for (int j = 0; j < m; ++j) {
       a(i, j) = full_a(free[i], free[j]);
@@ -143,14 +155,74 @@ bool VariableCovariance(const ModelFitter<ModelType>& fitter, ceres::Problem* pr
   return true;
 }
 
-// Standard errors of the model parameters by the delta method through the parameterization's
-// Jacobian (automatic differentiation with Jets).
+// A = sum J_i^T J_i and B = sum J_i^T J_i e_i over the residual rows i, with e_i the squared
+// residual itself or, when `expected_squared` is given, its expectation (one per row, in the
+// problem's order: sample k's channel c is row 3 k + c): then A^-1 B A^-1 is the covariance a
+// fit of these samples will have, before any data exist (experiment_design.h). One parallel
+// pass over the residual blocks, summed in a fixed order.
 template <typename ModelType>
-std::vector<double> ParamStderr(const ModelFitter<ModelType>& fitter, const Variables& v,
-                                const Eigen::MatrixXd& covariance) {
+void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem, const Variables& v,
+                  const std::vector<double>* expected_squared, Eigen::MatrixXd* a,
+                  Eigen::MatrixXd* b) {
+  Variables at = v;
+  std::vector<double*> blocks;
+  std::vector<int> sizes;
+  ProblemBlocks(fitter, &at, &blocks, &sizes);
+  const int n = fitter.FreeVariables();
+  std::vector<ceres::ResidualBlockId> residual_blocks;
+  problem->GetResidualBlocks(&residual_blocks);
+  std::vector<int64_t> first_row(residual_blocks.size() + 1, 0);
+  for (size_t k = 0; k < residual_blocks.size(); ++k) {
+    first_row[k + 1] =
+        first_row[k] +
+        problem->GetCostFunctionForResidualBlock(residual_blocks[k])->num_residuals();
+  }
+  struct Sums {
+    Eigen::MatrixXd a, b;
+  };
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
+  // One residual block per chunk (each evaluates in parallel), summed in a fixed order.
+  const Sums sums = DeterministicReduce(
+      static_cast<int64_t>(residual_blocks.size()), 1, Sums{zero, zero},
+      [&](int64_t begin, int64_t end, Sums partial) {
+        for (int64_t index = begin; index < end; ++index) {
+          VisitBlockRows(problem->GetCostFunctionForResidualBlock(residual_blocks[index]), blocks,
+                         sizes, n, [&](int r, const Eigen::VectorXd& row, double residual) {
+                           const double e = expected_squared != nullptr
+                                                ? (*expected_squared)[first_row[index] + r]
+                                                : residual * residual;
+                           partial.a.template selfadjointView<Eigen::Lower>().rankUpdate(row);
+                           partial.b.template selfadjointView<Eigen::Lower>().rankUpdate(row, e);
+                         });
+        }
+        return partial;
+      },
+      [](Sums x, const Sums& y) {
+        x.a += y.a;
+        x.b += y.b;
+        return x;
+      });
+  *a = sums.a.template selfadjointView<Eigen::Lower>();
+  *b = sums.b.template selfadjointView<Eigen::Lower>();
+}
+
+// Covariance of the fitter's variables (d, s, shape) at `v`; held variables carry NaN on the
+// diagonal. False, with `note`, when A is rank-deficient.
+template <typename ModelType>
+bool VariableCovariance(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                        const Variables& v, Eigen::MatrixXd* covariance, std::string* note) {
+  const std::vector<bool> held = HeldVariables(fitter, v, note);
+  Eigen::MatrixXd a, b;
+  JacobianSums(fitter, problem, v, nullptr, &a, &b);
+  return SandwichCovariance(a, b, held, covariance, note);
+}
+
+// d params / d variables at `v` (one row per model parameter), by automatic differentiation
+// of the parameterization with Jets.
+template <typename ModelType>
+Eigen::MatrixXd ParamGradients(const ModelFitter<ModelType>& fitter, const Variables& v) {
   using Jet = ceres::Jet<double, FitVariables::kMaxVariables>;
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  const int n = static_cast<int>(covariance.rows());
+  const int n = fitter.FreeVariables();
   Jet d[3], s[3], shape[1];
   int slot = 0;
   for (int c = 0; c < 3; ++c) d[c] = Jet(v.d[c], slot++);
@@ -158,6 +230,19 @@ std::vector<double> ParamStderr(const ModelFitter<ModelType>& fitter, const Vari
   if (ModelFitter<ModelType>::kLobed) shape[0] = Jet(v.shape[0], slot++);
   Jet params[ModelType::kNumParams];
   VariablesToParams<ModelType, Jet>(fitter.options().grey_specular, d, s, shape, params);
+  Eigen::MatrixXd gradients(ModelType::kNumParams, n);
+  for (int p = 0; p < ModelType::kNumParams; ++p) gradients.row(p) = params[p].v.head(n);
+  return gradients;
+}
+
+// Standard errors of the model parameters by the delta method through the parameterization's
+// Jacobian (automatic differentiation with Jets).
+template <typename ModelType>
+std::vector<double> ParamStderr(const ModelFitter<ModelType>& fitter, const Variables& v,
+                                const Eigen::MatrixXd& covariance) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const int n = static_cast<int>(covariance.rows());
+  const Eigen::MatrixXd gradients = ParamGradients(fitter, v);
   // Held (at-the-bound) variables carry NaN on the diagonal and zeros elsewhere; a parameter
   // that depends on one gets NaN, "not available".
   Eigen::MatrixXd finite_covariance = covariance;
@@ -168,7 +253,7 @@ std::vector<double> ParamStderr(const ModelFitter<ModelType>& fitter, const Vari
   }
   std::vector<double> errors(ModelType::kNumParams);
   for (int p = 0; p < ModelType::kNumParams; ++p) {
-    const Eigen::VectorXd gradient = params[p].v.head(n);
+    const Eigen::VectorXd gradient = gradients.row(p).transpose();
     bool depends_on_held = false;
     for (int k = 0; k < n; ++k) depends_on_held = depends_on_held || (held[k] && gradient[k] != 0);
     errors[p] = depends_on_held

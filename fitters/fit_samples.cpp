@@ -107,6 +107,8 @@ PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
       samples[k].weight = table.CellMeasure(samples[k].wi, samples[k].wo);
     });
     prepared.weighting = table.CellMeasureName();
+  } else if (measurement.equal_weighting()) {
+    prepared.weighting = "equal (a designed schedule: each sample stands for itself)";
   } else if (IsMerlGrid(measurement)) {
     tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
       samples[k].weight = MerlTable::CellMeasure(samples[k].wi, samples[k].wo);

@@ -40,6 +40,8 @@ struct PreparedSamples {
 //  * MERL grid: the exact measure of the cell, 4 cos(theta_d) sin(theta_h) sin(theta_d)
 //    dtheta_h dtheta_d dphi_d (dwi dwo in half/difference angles; Rusinkiewicz 1998), with
 //    the sqrt-warped theta_h widths.
+//  * a designed schedule (Measurement::equal_weighting, e.g. `brdf plan`'s): equal weights;
+//    the geometries were chosen for what they tell, not to tile the hemisphere.
 //  * scattered data: per incidence direction, the area of the detector directions closest to
 //    each sample, estimated from the distance to its k-th nearest neighbour (k = 4).
 // Weights are normalized to mean 1; the file's weight column multiplies them and its sigma

@@ -89,4 +89,40 @@ void VariablesToParams(bool grey_specular, const T* d, const T* s, const T* shap
   }
 }
 
+// The inverse of VariablesToParams (grey_specular off): the fitter's variables of a model's
+// parameters, each logistic variable clamped to the box the fit allows (+-kLogisticBound), so a
+// parameter at its bound (rho_d = 0, a used-up budget) maps to a saturated variable that the
+// covariance holds out (covariance.h).
+template <typename M>
+void ParamsToVariables(const double* params, double* d, double* s, double* shape) {
+  using models::ModelFamily;
+  const auto logit = [](double p) {
+    const double bound = FitVariables::kLogisticBound;
+    if (!(p > 0)) return -bound;
+    if (!(p < 1)) return bound;
+    return std::clamp(Logit(p), -bound, bound);
+  };
+  if constexpr (M::kFamily == ModelFamily::kDiffuse) {
+    for (int c = 0; c < 3; ++c) d[c] = logit(params[M::kRhoD + c]);
+  } else if constexpr (M::kFamily == ModelFamily::kPowerCosine) {
+    const double exponent = params[M::kExponent];
+    shape[0] = std::clamp(std::log(exponent), ShapeLowerBound<M>(), ShapeUpperBound<M>());
+    const double lobe_albedo = M::NormalLobeAlbedo(std::exp(shape[0]));
+    for (int c = 0; c < 3; ++c) {
+      const double q = lobe_albedo * params[M::kRhoS + c];
+      s[c] = logit(q);
+      d[c] = logit(q < 1 ? params[M::kRhoD + c] / (1.0 - q) : 1.0);
+    }
+  } else {
+    shape[0] = std::clamp(std::log(params[M::kAlpha]), ShapeLowerBound<M>(), ShapeUpperBound<M>());
+    const MicrofacetAlbedoTable& table = AlbedoTableOf<M>();
+    for (int c = 0; c < 3; ++c) {
+      const double f0 = params[M::kF0 + c];
+      s[c] = logit(f0);
+      const double budget = 1.0 - table.MaxLobeAlbedo(shape[0], Logistic(s[c]));
+      d[c] = logit(budget > 0 ? params[M::kRhoD + c] / budget : 1.0);
+    }
+  }
+}
+
 }  // namespace brdf::fitters

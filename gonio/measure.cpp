@@ -99,6 +99,7 @@ Calibration::Calibration(const Instrument& instrument, double reference_reading,
       ideal_reference_reading_(instrument.reference_rho * kInvPi *
                                std::cos(DegToRad(instrument.reference_theta_o_deg))) {
   const double expected = ExpectedCounts(reference_reading);
+  reference_expected_counts_ = expected;
   if (instrument.photons <= 0) {
     reference_counts_ = expected;
     reference_counts_variance_ = 0;
@@ -124,6 +125,23 @@ double Calibration::ExpectedCounts(double reading) const {
 double Calibration::Slope(double cos_theta_o) const {
   const double counts_per_reading = ExpectedCounts(1.0) - ExpectedCounts(0.0);
   return counts_per_reading / reference_counts_ * ideal_reference_reading_ / cos_theta_o;
+}
+
+Rgb Calibration::ExpectedSigma(const Rgb& reading, double cos_theta_o) const {
+  if (instrument_.photons <= 0) return Rgb::Zero();
+  const double read_variance = instrument_.read_noise * instrument_.read_noise;
+  Rgb sigma;
+  for (int c = 0; c < 3; ++c) {
+    const double expected = ExpectedCounts(reading[c]);
+    const double ratio = expected / reference_expected_counts_;
+    sigma[c] = std::sqrt(expected + read_variance + ratio * ratio * reference_counts_variance_) /
+               reference_expected_counts_;
+  }
+  return sigma * ideal_reference_reading_ / cos_theta_o;
+}
+
+double Calibration::ReferenceRelativeVariance() const {
+  return reference_counts_variance_ / (reference_expected_counts_ * reference_expected_counts_);
 }
 
 void Calibration::Calibrate(const Rgb& reading, double cos_theta_o, uint64_t rng_index, Rgb* value,
@@ -167,6 +185,31 @@ void Calibration::Ratio(const Rgb& reading, const Rgb* reference_reading, uint64
   }
 }
 
+Rgb CombinedSigma(const Rgb& calibration_sigma, const Rgb& sample_error, const Rgb& positioning,
+                  double slope) {
+  // Calibration is linear in the reading, so its slope carries a reading's error over; a
+  // traced sample's Monte Carlo error is independent of the detector noise.
+  return (calibration_sigma.square() + (slope * sample_error).square() +
+          (slope * positioning).square())
+      .sqrt();
+}
+
+NoiseModel::NoiseModel(const GonioSample& sample, const Instrument& instrument)
+    : sample_(sample),
+      instrument_(instrument),
+      calibration_(instrument, ReferenceReading(instrument), /*seed=*/1) {
+  if (!sample.HasExpectedReading()) {
+    throw UsageError("the noise model needs a sample with an expected reading (model:MODEL)");
+  }
+}
+
+Rgb NoiseModel::Sigma(const Vec3& wi, const Vec3& wo) const {
+  const Rgb reading = sample_.ExpectedReading(instrument_, wi, wo);
+  return CombinedSigma(calibration_.ExpectedSigma(reading, wo.z()), Rgb::Zero(),
+                       PositioningSigma(sample_, instrument_, wi, wo, reading),
+                       calibration_.Slope(wo.z()));
+}
+
 std::unique_ptr<GonioSample> MakeSample(const std::string& spec, const Instrument& instrument) {
   const size_t colon = spec.find(':');
   const std::string kind = spec.substr(0, colon);
@@ -199,6 +242,7 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
   measurement.metadata["instrument_json"] = instrument.ToJson();
   measurement.metadata["units"] = "BRDF in sr^-1, angles in degrees";
   measurement.metadata["producer"] = "brdf measure (virtual gonioreflectometer)";
+  if (schedule.designed) measurement.metadata[kWeightingKey] = kEqualWeighting;
 
   if (StartsWith(options.sample, "sphere:")) {
     const SphereAcquisition acquisition(LoadSampleModel(options.sample, options.sample.substr(7)),
@@ -261,16 +305,10 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
       Rgb value, sigma;
       calibration->Calibrate(readings.value[j], wo.z(), index, &value, &sigma);
       // Calibration is linear in the reading, so its slope carries a reading's error over.
-      const double slope = calibration->Slope(wo.z());
-      Rgb variance = sigma.square();
-      if (!readings.standard_error.empty()) {
-        // A traced sample's Monte Carlo error, independent of the detector noise.
-        variance += (slope * readings.standard_error[j]).square();
-      }
-      variance +=
-          (slope * PositioningSigma(*sample, instrument, incidence.wi, wo, readings.value[j]))
-              .square();
-      sigma = variance.sqrt();
+      sigma = CombinedSigma(
+          sigma, readings.standard_error.empty() ? Rgb::Zero() : readings.standard_error[j],
+          PositioningSigma(*sample, instrument, incidence.wi, wo, readings.value[j]),
+          calibration->Slope(wo.z()));
       for (int c = 0; c < 3; ++c) {
         packed[k * kDoubles + 1 + c] = value[c];
         packed[k * kDoubles + 4 + c] = sigma[c];

@@ -65,6 +65,12 @@ class Calibration {
                       Rgb* value, Rgb* sigma) const;
 
   double reference_counts() const { return reference_counts_; }
+  // The one-sigma uncertainty Calibrate states for reading R, before any noise is drawn (the
+  // expected counts in place of noisy ones): the noise model a plan is designed against.
+  Rgb ExpectedSigma(const Rgb& reading, double cos_theta_o) const;
+  // Relative variance of the run's reference (the mean of its readings): an error common to
+  // every calibrated value of the run, which no choice of geometries averages away.
+  double ReferenceRelativeVariance() const;
   // d(value)/d(reading) of Calibrate: how an error of the reading becomes an error of the BRDF.
   double Slope(double cos_theta_o) const;
 
@@ -77,9 +83,33 @@ class Calibration {
 
   const Instrument& instrument_;
   uint64_t seed_;
-  double ideal_reference_reading_;  // R_norm = (rho_ref/π) cos(theta_o,ref)
-  double reference_counts_;         // mean of the reference readings
+  double ideal_reference_reading_;    // R_norm = (rho_ref/π) cos(theta_o,ref)
+  double reference_counts_;           // mean of the reference readings
+  double reference_expected_counts_;  // their expectation
   double reference_counts_variance_;
+};
+
+// The variance `Measure` states for one reading: the calibration's (detector noise), a traced
+// sample's Monte Carlo error and the positioning term, the last two carried over by the
+// calibration's slope. Every sigma of the instrument is combined here.
+Rgb CombinedSigma(const Rgb& calibration_sigma, const Rgb& sample_error, const Rgb& positioning,
+                  double slope);
+
+// The sigma `Measure` will state for each reading of `sample` at nominal (wi, wo), known before
+// the measurement (the sample's noise-free reading in place of a noisy one): what `brdf plan`
+// weights the Fisher information by. Needs a sample with an expected reading (model:).
+class NoiseModel {
+ public:
+  // Throws UsageError when the sample has no expected reading.
+  NoiseModel(const GonioSample& sample, const Instrument& instrument);
+  Rgb Sigma(const Vec3& wi, const Vec3& wo) const;
+  // Relative variance of the scale error common to every value of a run (the reference).
+  double CommonScaleVariance() const { return calibration_.ReferenceRelativeVariance(); }
+
+ private:
+  const GonioSample& sample_;
+  const Instrument& instrument_;
+  Calibration calibration_;
 };
 
 }  // namespace brdf::gonio

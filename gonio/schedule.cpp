@@ -7,6 +7,7 @@
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "core/text.h"
 #include "gonio/sampling.h"
 #include "io/merl.h"
 
@@ -171,7 +172,109 @@ Schedule Adaptive(const std::string& spec) {
   return schedule;
 }
 
+Schedule Uniform(const std::string& spec) {
+  const auto options = ParseOptions(spec, {"count", "theta_max"});
+  const double count = Option(options, "count", 0);
+  if (count < 1 || count > 1e7 || count != std::floor(count)) {
+    Fail(spec, "needs count=N, a whole number in [1, 10000000]");
+  }
+  const double theta_max = Option(options, "theta_max", kUniformThetaMaxDeg);
+  if (theta_max > 89.9) Fail(spec, "theta_max must lie in (0, 89.9] degrees");
+  Schedule schedule;
+  for (const auto& [wi, wo] : UniformPairs(static_cast<int>(count), theta_max)) {
+    if (schedule.incidences.empty() || schedule.incidences.back().wi != wi) {
+      schedule.incidences.push_back({wi, {}});
+    }
+    schedule.incidences.back().detectors.push_back({wo, 0});
+  }
+  return schedule;
+}
+
+// A CSV of direction pairs: optional '#' lines, a header naming theta_i, phi_i, theta_o and
+// phi_o (any order, other columns ignored), one geometry a row. Rows with the same incidence
+// form one incidence, in the order of their first row.
+Schedule FromFile(const std::string& spec) {
+  const std::string path = spec.substr(5);
+  if (path.empty()) Fail(spec, "expected file:PATH (a CSV with theta_i,phi_i,theta_o,phi_o)");
+  const std::string text = ReadFileBytes(path, int64_t{1} << 30);
+  LineReader reader(path, text);
+  std::string_view line;
+  constexpr const char* kNames[] = {"theta_i", "phi_i", "theta_o", "phi_o"};
+  int column[4] = {-1, -1, -1, -1};
+  size_t fields = 0;
+  bool header = false;
+  Schedule schedule;
+  std::map<std::pair<double, double>, size_t> incidence_of;
+  while (reader.Next(&line)) {
+    const std::string_view trimmed = Trim(line);
+    if (trimmed.empty() || (!header && trimmed[0] == '#')) continue;
+    const std::vector<std::string_view> parts = SplitFields(trimmed, ",", false);
+    if (!header) {
+      for (size_t k = 0; k < parts.size(); ++k) {
+        for (int name = 0; name < 4; ++name) {
+          if (Trim(parts[k]) != kNames[name]) continue;
+          if (column[name] >= 0) reader.Fail(std::string("column '") + kNames[name] + "' twice");
+          column[name] = static_cast<int>(k);
+        }
+      }
+      for (int name = 0; name < 4; ++name) {
+        if (column[name] < 0) {
+          reader.Fail(std::string("the header has no column '") + kNames[name] +
+                      "' (a schedule file needs theta_i,phi_i,theta_o,phi_o in degrees)");
+        }
+      }
+      fields = parts.size();
+      header = true;
+      continue;
+    }
+    if (parts.size() != fields) {
+      reader.Fail("expected " + std::to_string(fields) + " fields as in the header, found " +
+                  std::to_string(parts.size()));
+    }
+    double angle[4];
+    for (int name = 0; name < 4; ++name) {
+      angle[name] = ParseNumber(reader, Trim(parts[column[name]]), kNames[name]);
+    }
+    for (int name : {0, 2}) {
+      if (!(angle[name] >= 0 && angle[name] < 90)) {
+        reader.Fail(std::string(kNames[name]) + " must lie in [0, 90) degrees, found " +
+                    FormatNumber(angle[name]));
+      }
+    }
+    const Vec3 wi = Direction(DegToRad(angle[0]), DegToRad(angle[1]));
+    const Vec3 wo = Direction(DegToRad(angle[2]), DegToRad(angle[3]));
+    const auto [found, added] =
+        incidence_of.emplace(std::make_pair(angle[0], angle[1]), schedule.incidences.size());
+    if (added) schedule.incidences.push_back({wi, {}});
+    schedule.incidences[found->second].detectors.push_back({wo, 0});
+  }
+  if (!header) throw InputError(path, "no header line theta_i,phi_i,theta_o,phi_o");
+  if (schedule.incidences.empty()) throw InputError(path, "no geometries after the header");
+  schedule.designed = true;
+  return schedule;
+}
+
 }  // namespace
+
+std::vector<std::pair<Vec3, Vec3>> UniformPairs(int count, double theta_max_deg) {
+  // Incidences: about the cube root of the count (at least one, at most one per degree), at the
+  // mid-points of equal-cos(theta) slices of [0, theta_max], so they too cover solid angle
+  // evenly. Detectors: the first cells of an equal-solid-angle partition of the hemisphere
+  // (EqualAreaCells orders them from the pole outward), sized so the cap holds them.
+  std::vector<std::pair<Vec3, Vec3>> pairs;
+  const double cos_max = std::cos(DegToRad(theta_max_deg));
+  const int incidences = std::clamp(static_cast<int>(std::lround(std::cbrt(count))), 1,
+                                    std::min(count, std::max(1, static_cast<int>(theta_max_deg))));
+  for (int g = 0; g < incidences; ++g) {
+    const int detectors = count / incidences + (g < count % incidences ? 1 : 0);
+    const double cos_i = 1.0 - (1.0 - cos_max) * (g + 0.5) / incidences;
+    const Vec3 wi = SphericalDirection(std::acos(cos_i), 0.0);
+    const int cells = static_cast<int>(std::ceil(detectors / (1.0 - cos_max)));
+    const std::vector<Vec3> centres = EqualAreaCells(std::max(cells, detectors));
+    for (int k = 0; k < detectors; ++k) pairs.emplace_back(wi, centres[k]);
+  }
+  return pairs;
+}
 
 size_t Schedule::CountGeometries() const {
   size_t count = 0;
@@ -239,8 +342,14 @@ Schedule MakeSchedule(const std::string& spec) {
     schedule = EqualArea(spec);
   } else if (kind == "adaptive") {
     schedule = Adaptive(spec);
+  } else if (kind == "uniform") {
+    schedule = Uniform(spec);
+  } else if (kind == "file") {
+    schedule = FromFile(spec);
   } else {
-    Fail(spec, "unknown kind (known: inplane, hemisphere, merl, equal-area, adaptive)");
+    Fail(spec,
+         "unknown kind (known: inplane, hemisphere, merl, equal-area, adaptive, uniform, "
+         "file:PATH)");
   }
   schedule.spec = spec;
   schedule.kind = kind;

@@ -40,7 +40,9 @@ Command AddMeasureCommand(CLI::App& parent) {
   app->add_option("--schedule", options->schedule,
                   "inplane[:step=D] | hemisphere[:theta_i_step=D:theta_o_step=D:phi_o_step=D] | "
                   "merl | equal-area:cells=N[:theta_i_step=D] | "
-                  "adaptive[:theta_i_step=D:base_step=D] (degrees; steps default 5, base_step 10)")
+                  "adaptive[:theta_i_step=D:base_step=D] | uniform:count=N[:theta_max=D] | "
+                  "file:PLAN.csv (a CSV whose header names theta_i,phi_i,theta_o,phi_o, e.g. from "
+                  "brdf plan) (degrees; steps default 5, base_step 10)")
       ->capture_default_str();
   app->add_option("--instrument", options->instrument,
                   "instrument JSON (every field optional; default: collimated source of 0.25 deg "

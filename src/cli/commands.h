@@ -25,5 +25,6 @@ Command AddTonemapCommand(CLI::App& parent);
 Command AddRenderCommand(CLI::App& parent);
 Command AddBatchCommand(CLI::App& parent);
 Command AddExportCommand(CLI::App& parent);
+Command AddPlanCommand(CLI::App& parent);
 
 }  // namespace brdf::cli

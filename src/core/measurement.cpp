@@ -69,4 +69,9 @@ MeasurementSummary Summarize(const Measurement& measurement) {
   return summary;
 }
 
+bool Measurement::equal_weighting() const {
+  const auto found = metadata.find(kWeightingKey);
+  return found != metadata.end() && found->second == kEqualWeighting;
+}
+
 }  // namespace brdf

@@ -12,6 +12,9 @@
 
 namespace brdf {
 
+inline constexpr const char* kWeightingKey = "weighting";
+inline constexpr const char* kEqualWeighting = "equal";
+
 struct Sample {
   Vec3 wi;               // unit, toward the light (DESIGN §1)
   Vec3 wo;               // unit, toward the detector
@@ -52,6 +55,10 @@ struct Measurement {
 
   bool has_sigma() const { return !sigma.empty(); }
   bool has_weight() const { return !weight.empty(); }
+  // Metadata "weighting: equal": the geometries were chosen one by one (a designed schedule,
+  // `brdf plan`), so a fit weighs the samples equally instead of by the solid angle each
+  // stands for (fitters/fit_samples.h).
+  bool equal_weighting() const;
   // The "sample" metadata, or the file name when there is none.
   std::string SampleName() const;
 };

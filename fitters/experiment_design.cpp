@@ -1,0 +1,369 @@
+#include "fitters/experiment_design.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <tuple>
+
+#include "core/angles.h"
+#include "core/errors.h"
+#include "core/text.h"
+#include "fitters/covariance.h"
+
+namespace brdf::fitters {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// The ridge that makes the first choices possible (the information of one reading is rank 3
+// at most), relative to a candidate's mean information per variable.
+constexpr double kRidge = 1e-6;
+// M^-1 is rebuilt from M (not updated) every this many choices, against rounding drift; the
+// trace criteria's lazy gains are also all refreshed then.
+constexpr int kFullRefresh = 64;
+// Two geometries closer than this (radians) in both directions are the same geometry.
+constexpr double kSameGeometry = 1e-6;
+
+// The fitter's variables at `model`'s parameters and which of them a fit holds out.
+template <typename M>
+struct DesignState {
+  FitOptions fit_options;
+  ModelFitter<M> fitter{fit_options};
+  Variables v;
+  std::vector<bool> held;
+  std::vector<int> free;  // indices of the variables not held
+  std::string held_note;
+
+  explicit DesignState(const Model& model) {
+    ParamsToVariables<M>(model.params().data(), v.d, v.s, v.shape);
+    held = HeldVariables(fitter, v, &held_note);
+    for (int k = 0; k < fitter.FreeVariables(); ++k) {
+      if (!held[k]) free.push_back(k);
+    }
+  }
+};
+
+// The fitter's samples for `points` with residual multipliers 1/sigma: their Jacobian rows are
+// the whitened sensitivities whose outer products sum to the information.
+std::vector<FitSample> WhitenedSamples(const Model& model, const std::vector<DesignPoint>& points) {
+  std::vector<FitSample> samples(points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    FitSample& sample = samples[k];
+    sample.wi = points[k].wi;
+    sample.wo = points[k].wo;
+    sample.cos_theta_i = sample.wi.z();
+    sample.value = sample.target = model.Eval(sample.wi, sample.wo);
+    for (int c = 0; c < 3; ++c) {
+      const double sigma = points[k].sigma[c];
+      if (!(sigma > 0) || !std::isfinite(sigma)) {
+        throw UsageError("the reading at theta_i=" + FormatNumber(RadToDeg(Theta(sample.wi)), 4) +
+                         ", theta_o=" + FormatNumber(RadToDeg(Theta(sample.wo)), 4) +
+                         " deg has no noise (sigma " + FormatNumber(sigma) +
+                         "): its information is unbounded; give the instrument a photon budget "
+                         "or positioning jitter");
+      }
+      sample.scale[c] = 1.0 / sigma;
+    }
+  }
+  return samples;
+}
+
+// U_k (free variables x 3 channels) of every point, stacked: column 3 k + c.
+template <typename M>
+Eigen::MatrixXd Sensitivities(const DesignState<M>& state, const Model& model,
+                              const std::vector<DesignPoint>& points) {
+  const std::vector<FitSample> samples = WhitenedSamples(model, points);
+  Variables v = state.v;
+  auto problem = state.fitter.BuildProblem(samples, &v);
+  const int m = static_cast<int>(state.free.size());
+  Eigen::MatrixXd u(m, 3 * static_cast<Eigen::Index>(points.size()));
+  ForEachJacobianRow(state.fitter, problem.get(), state.v,
+                     [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
+                       for (int i = 0; i < m; ++i) u(i, row) = jacobian[state.free[i]];
+                     });
+  return u;
+}
+
+// Rows c_p = (d param_p / d free variables) / param_p of the parameters a trace criterion sums.
+template <typename M>
+Eigen::MatrixXd CriterionRows(const DesignState<M>& state, const Model& model,
+                              const DesignOptions& options) {
+  const Eigen::MatrixXd gradients = ParamGradients(state.fitter, state.v);
+  std::vector<Eigen::VectorXd> rows;
+  const ModelInfo& info = model.info();
+  for (const ParamInfo& param : info.params) {
+    if (options.criterion == DesignCriterion::kParam && param.name != options.param) continue;
+    for (int c = 0; c < param.channels; ++c) {
+      const int p = param.slot + c;
+      bool depends_on_held = false;
+      for (size_t k = 0; k < state.held.size(); ++k) {
+        depends_on_held = depends_on_held || (state.held[k] && gradients(p, k) != 0);
+      }
+      const double value = model.params()[p];
+      if (depends_on_held || !(std::abs(value) > 0)) continue;
+      Eigen::VectorXd row(state.free.size());
+      for (size_t i = 0; i < state.free.size(); ++i) row[i] = gradients(p, state.free[i]) / value;
+      rows.push_back(row);
+    }
+  }
+  if (rows.empty()) {
+    throw UsageError(options.criterion == DesignCriterion::kParam
+                         ? "criterion param:" + options.param + ": " + options.param +
+                               " is at a bound of " + model.name() +
+                               " (see the warnings): no plan can inform it"
+                         : "every parameter of " + model.ToString(6) +
+                               " is at a bound: there is nothing to plan for");
+  }
+  Eigen::MatrixXd c(rows.size(), state.free.size());
+  for (size_t r = 0; r < rows.size(); ++r) c.row(r) = rows[r].transpose();
+  return c;
+}
+
+bool Conflicts(const DesignPoint& a, const DesignPoint& b, double cos_separation) {
+  return a.wi.dot(b.wi) > cos_separation && a.wo.dot(b.wo) > cos_separation;
+}
+
+template <typename M>
+DesignResult Choose(const Model& model, const std::vector<DesignPoint>& candidates,
+                    const DesignOptions& options) {
+  const DesignState<M> state(model);
+  const int m = static_cast<int>(state.free.size());
+  if (m == 0) {
+    throw UsageError("every parameter of " + model.ToString(6) +
+                     " is at a bound: there is nothing to plan for");
+  }
+  const size_t budget = static_cast<size_t>(options.budget);
+  if (options.budget < 1) throw UsageError("--budget must be at least 1");
+  if (budget > candidates.size()) {
+    throw UsageError("--budget " + std::to_string(budget) + " is larger than the candidate set (" +
+                     std::to_string(candidates.size()) +
+                     " geometries within the constraints): lower it or widen the candidates");
+  }
+  const bool trace = options.criterion != DesignCriterion::kD;
+  const Eigen::MatrixXd c = trace ? CriterionRows(state, model, options) : Eigen::MatrixXd();
+  const Eigen::MatrixXd u = Sensitivities(state, model, candidates);
+  const auto block = [&](size_t k) { return u.middleCols(3 * static_cast<Eigen::Index>(k), 3); };
+
+  const double mean_information = u.squaredNorm() / (static_cast<double>(candidates.size()) * m);
+  Eigen::MatrixXd information = Eigen::MatrixXd::Identity(m, m) * kRidge * mean_information;
+  Eigen::MatrixXd inverse = information.inverse();
+
+  // The gain of candidate k at the current design.
+  const auto gain = [&](size_t k) {
+    const auto uk = block(k);
+    const Eigen::MatrixXd inverse_u = inverse * uk;
+    const Eigen::Matrix3d s = Eigen::Matrix3d::Identity() + uk.transpose() * inverse_u;
+    if (!trace) return std::log(s.determinant());
+    const Eigen::MatrixXd projected = c * inverse_u;  // rows x 3
+    return (projected * s.llt().solve(projected.transpose())).trace();
+  };
+
+  // Lazy greedy: (gain, -index) so that ties go to the lower index; `stamp` is the step at which
+  // the gain was computed.
+  using Entry = std::tuple<double, int64_t, size_t>;  // gain, -index, stamp
+  std::priority_queue<Entry> queue;
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    queue.emplace(gain(k), -static_cast<int64_t>(k), 0);
+  }
+  std::vector<char> excluded(candidates.size(), 0);
+  const double cos_separation =
+      std::cos(std::max(DegToRad(options.min_separation_deg), kSameGeometry));
+  DesignResult result;
+  size_t step = 0;
+  while (result.chosen.size() < budget) {
+    if (queue.empty()) {
+      throw UsageError(
+          "the constraints leave room for only " + std::to_string(result.chosen.size()) +
+          " geometries of the " + std::to_string(candidates.size()) +
+          " candidates at min_separation_deg=" + FormatNumber(options.min_separation_deg) +
+          "; --budget " + std::to_string(budget) +
+          " needs a smaller separation, wider candidates or a smaller budget");
+    }
+    const auto [value, negative_index, stamp] = queue.top();
+    queue.pop();
+    const size_t k = static_cast<size_t>(-negative_index);
+    if (excluded[k]) continue;
+    if (stamp != step) {
+      queue.emplace(gain(k), negative_index, step);
+      continue;
+    }
+    // Accept k: Woodbury update of M^-1, exclusion of its neighbours.
+    const auto uk = block(k);
+    information += uk * uk.transpose();
+    const Eigen::MatrixXd inverse_u = inverse * uk;
+    const Eigen::Matrix3d s = Eigen::Matrix3d::Identity() + uk.transpose() * inverse_u;
+    inverse -= inverse_u * s.llt().solve(inverse_u.transpose());
+    result.chosen.push_back(k);
+    for (size_t j = 0; j < candidates.size(); ++j) {
+      if (!excluded[j] && Conflicts(candidates[k], candidates[j], cos_separation)) excluded[j] = 1;
+    }
+    ++step;
+    if (step % kFullRefresh == 0) {
+      inverse = information.llt().solve(Eigen::MatrixXd::Identity(m, m));
+      if (trace) {  // not submodular: stale gains are no bound, so recompute them all
+        std::priority_queue<Entry> fresh;
+        while (!queue.empty()) {
+          const size_t j = static_cast<size_t>(-std::get<1>(queue.top()));
+          queue.pop();
+          if (!excluded[j]) fresh.emplace(gain(j), -static_cast<int64_t>(j), step);
+        }
+        queue.swap(fresh);
+      }
+    }
+  }
+  Eigen::MatrixXd chosen_information = Eigen::MatrixXd::Zero(m, m);
+  for (size_t k : result.chosen) chosen_information += block(k) * block(k).transpose();
+  const Eigen::LLT<Eigen::MatrixXd> llt(chosen_information);
+  result.log_det = -kInf;
+  if (llt.info() == Eigen::Success) {
+    result.log_det = 2 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
+  }
+  return result;
+}
+
+template <typename M>
+double LogDet(const Model& model, const std::vector<DesignPoint>& points) {
+  const DesignState<M> state(model);
+  const int m = static_cast<int>(state.free.size());
+  if (m == 0 || points.empty()) return -kInf;
+  const Eigen::MatrixXd u = Sensitivities(state, model, points);
+  const Eigen::MatrixXd information = u * u.transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
+  const Eigen::VectorXd values = eigen.eigenvalues();
+  if (!(values.minCoeff() > kRankTolerance * values.maxCoeff())) return -kInf;
+  return values.array().log().sum();
+}
+
+template <typename M>
+PredictedErrors Predict(const Model& model, const Measurement& measurement,
+                        double common_scale_variance) {
+  DesignState<M> state(model);
+  const PreparedSamples prepared = PrepareSamples(measurement, Loss::kL2);
+  if (prepared.samples.size() != measurement.samples.size() || !measurement.has_sigma()) {
+    throw UsageError("a predicted fit needs every geometry above the horizon, with its sigma");
+  }
+  // E[r^2] of sample k's channel c: (scale_c sigma_c)^2, the noise the multiplier scales.
+  std::vector<double> expected(3 * prepared.samples.size());
+  for (size_t k = 0; k < prepared.samples.size(); ++k) {
+    for (int c = 0; c < 3; ++c) {
+      expected[3 * k + c] = std::pow(prepared.samples[k].scale[c] * measurement.sigma[k][c], 2);
+    }
+  }
+  Variables v = state.v;
+  auto problem = state.fitter.BuildProblem(prepared.samples, &v);
+  Eigen::MatrixXd a, b, covariance;
+  JacobianSums(state.fitter, problem.get(), state.v, &expected, &a, &b);
+  if (common_scale_variance > 0) {
+    // Every value times (1 + e): the residuals change by -scale f e, the variables by
+    // A^-1 g e with g = sum J^T scale f, which adds var(e) g g^T to B.
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(a.rows());
+    ForEachJacobianRow(state.fitter, problem.get(), state.v,
+                       [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
+                         const FitSample& sample = prepared.samples[row / 3];
+                         const int c = static_cast<int>(row % 3);
+                         g += jacobian * (sample.scale[c] * sample.value[c]);
+                       });
+    b += common_scale_variance * g * g.transpose();
+  }
+  PredictedErrors errors;
+  errors.note = state.held_note;
+  errors.stderr_values.assign(M::kNumParams, std::numeric_limits<double>::quiet_NaN());
+  if (SandwichCovariance(a, b, state.held, &covariance, &errors.note)) {
+    errors.stderr_values = ParamStderr(state.fitter, state.v, covariance);
+    errors.available = true;
+  }
+  return errors;
+}
+
+std::string ChannelList(const std::vector<int>& channels, int size) {
+  if (size == 1) return "";
+  static const char* kNames[] = {"R", "G", "B"};
+  std::string list;
+  for (int c : channels) list += (list.empty() ? "" : ",") + std::string(kNames[c]);
+  return " (" + list + ")";
+}
+
+}  // namespace
+
+DesignOptions ParseCriterion(const std::string& text, const Model& model) {
+  DesignOptions options;
+  if (text == "d") {
+    options.criterion = DesignCriterion::kD;
+  } else if (text == "a") {
+    options.criterion = DesignCriterion::kA;
+  } else if (StartsWith(text, "param:")) {
+    options.criterion = DesignCriterion::kParam;
+    options.param = text.substr(6);
+    if (model.info().FindParam(options.param) == nullptr) {
+      std::string names;
+      for (const ParamInfo& param : model.info().params) {
+        names += (names.empty() ? "" : ", ") + param.name;
+      }
+      throw UsageError("criterion '" + text + "': " + model.name() + " has no parameter '" +
+                       options.param + "' (its parameters: " + names + ")");
+    }
+  } else {
+    throw UsageError("unknown criterion '" + text + "' (known: d, a, param:NAME)");
+  }
+  return options;
+}
+
+std::vector<std::string> DesignWarnings(const Model& model) {
+  return VisitModelType(model.name(), [&](auto model_type) {
+    using M = decltype(model_type);
+    const DesignState<M> state(model);
+    const Eigen::MatrixXd gradients = ParamGradients(state.fitter, state.v);
+    std::vector<std::string> warnings;
+    for (const ParamInfo& param : model.info().params) {
+      std::vector<int> channels;
+      for (int c = 0; c < param.channels; ++c) {
+        for (size_t k = 0; k < state.held.size(); ++k) {
+          if (state.held[k] && gradients(param.slot + c, k) != 0) {
+            channels.push_back(c);
+            break;
+          }
+        }
+      }
+      if (channels.empty()) continue;
+      warnings.push_back(param.name + ChannelList(channels, param.channels) +
+                         " is at a bound of the fit (" +
+                         FormatNumber(model.params()[param.slot + channels[0]], 6) +
+                         "): a fit cannot move it, so no reading informs it; the plan pins down "
+                         "the other parameters");
+    }
+    if constexpr (kHasLobe<M>) {
+      const double shape = model.params()[M::kShape];
+      const double clamped =
+          std::clamp(std::log(shape), ShapeLowerBound<M>(), ShapeUpperBound<M>());
+      if (std::abs(std::log(shape) - clamped) > 1e-12 || !(shape > 0)) {
+        warnings.push_back(model.info().shape_param().name + " = " + FormatNumber(shape, 6) +
+                           " lies outside the fit's range [" +
+                           FormatNumber(std::exp(ShapeLowerBound<M>()), 6) + ", " +
+                           FormatNumber(std::exp(ShapeUpperBound<M>()), 6) +
+                           "]: planned at the nearest end of it");
+      }
+    }
+    return warnings;
+  });
+}
+
+DesignResult ChooseDesign(const Model& model, const std::vector<DesignPoint>& candidates,
+                          const DesignOptions& options) {
+  return VisitModelType(model.name(), [&](auto model_type) {
+    return Choose<decltype(model_type)>(model, candidates, options);
+  });
+}
+
+double InformationLogDet(const Model& model, const std::vector<DesignPoint>& points) {
+  return VisitModelType(
+      model.name(), [&](auto model_type) { return LogDet<decltype(model_type)>(model, points); });
+}
+
+PredictedErrors PredictErrors(const Model& model, const Measurement& measurement,
+                              double common_scale_variance) {
+  return VisitModelType(model.name(), [&](auto model_type) {
+    return Predict<decltype(model_type)>(model, measurement, common_scale_variance);
+  });
+}
+
+}  // namespace brdf::fitters

@@ -1,0 +1,89 @@
+// Optimal experimental design for a fit (DESIGN §3, `brdf plan`; docs/planning.md): which
+// direction pairs a measurement should visit so that the fitted parameters come out with the
+// smallest variance. The Fisher information of a set of readings is sum_i J_i^T W_i J_i, J_i
+// the Jacobian of reading i's model value with respect to the fitter's variables
+// (parameterization.h; the same Ceres cost functions the fit differentiates, covariance.h) and
+// W_i = 1 / sigma_i^2 per channel, sigma_i the noise the instrument will state for the reading.
+//
+// Criteria (Atkinson & Donev, "Optimum Experimental Designs"):
+//   d          maximise log det of the information (the volume of the confidence ellipsoid);
+//              invariant to how the parameters are scaled or reparameterized.
+//   a          minimise the sum of the free parameters' squared relative standard errors.
+//   param:NAME minimise one parameter's squared relative standard error (summed over its
+//              channels).
+// The design is chosen greedily from a candidate set, one geometry at a time, each adding the
+// rank-3 (one row per channel) term U U^T: the determinant lemma gives the gain
+// log det(I + U^T M^-1 U) and Woodbury the new M^-1 in O(n^2) per candidate. log det is
+// monotone submodular in the chosen set, so "lazy" evaluation (a stale gain is an upper bound)
+// returns exactly the greedy design while evaluating few candidates per step. The trace
+// criteria are not submodular: the same lazy scheme is a heuristic for them, refreshed with a
+// full evaluation every kFullRefresh steps.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/measurement.h"
+#include "core/vec.h"
+#include "models/registry.h"
+
+namespace brdf::fitters {
+
+// One candidate reading: nominal directions and the one-sigma noise of its value (sr^-1).
+struct DesignPoint {
+  Vec3 wi, wo;
+  Rgb sigma = Rgb::Ones();
+};
+
+enum class DesignCriterion { kD, kA, kParam };
+
+struct DesignOptions {
+  DesignCriterion criterion = DesignCriterion::kD;
+  std::string param;  // the parameter of kParam
+  int budget = 0;     // geometries to choose
+  // Two chosen geometries must differ by at least this much in incidence or in detector
+  // direction (degrees); 0: only distinct geometries.
+  double min_separation_deg = 0;
+};
+
+// Parses "d", "a" or "param:NAME" for `model`; throws UsageError naming an unknown criterion or
+// a parameter the model does not have.
+DesignOptions ParseCriterion(const std::string& text, const Model& model);
+
+struct DesignResult {
+  std::vector<size_t> chosen;  // candidate indices in the order they were chosen
+  double log_det = 0;          // of the chosen set's information on the free variables
+};
+
+// What the plan can and cannot inform at `model`: one message per parameter at a bound (its
+// fitter variable is saturated and held out, as covariance.h holds it out of a fit).
+std::vector<std::string> DesignWarnings(const Model& model);
+
+// Greedy choice of options.budget candidates (see above). Throws UsageError when the budget
+// exceeds what the candidates and the separation allow, when the criterion's parameter is at a
+// bound, or when a sigma is not positive; deterministic (ties go to the lower index).
+DesignResult ChooseDesign(const Model& model, const std::vector<DesignPoint>& candidates,
+                          const DesignOptions& options);
+
+// log det of the information of `points` on the free variables (-inf when singular).
+double InformationLogDet(const Model& model, const std::vector<DesignPoint>& points);
+
+struct PredictedErrors {
+  std::vector<double> stderr_values;  // one per model parameter; NaN when not available
+  bool available = false;
+  std::string note;  // why not, when they are not
+};
+
+// The standard errors `brdf fit` (L2 loss, its default) will report for a measurement of
+// `model` at the geometries of `measurement`, whose `sigma` is the noise its readings will
+// carry: the fit's own sample weights (PrepareSamples: solid angle, the file's weights,
+// sigma) and the sandwich covariance with the expected squared residuals in place of measured
+// ones. `measurement`'s values must be the model's (noise-free). `common_scale_variance` is the
+// relative variance of an error shared by every value of the run (the instrument's reference):
+// it moves the fit along the direction a common scale of all values moves it, whatever the
+// geometries.
+PredictedErrors PredictErrors(const Model& model, const Measurement& measurement,
+                              double common_scale_variance = 0);
+
+}  // namespace brdf::fitters
