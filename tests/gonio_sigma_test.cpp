@@ -107,6 +107,17 @@ TEST(GonioSigmaTest, TruthFitsRaiseNoMismatchOrOutlierWarning) {
   // The other side: a diffuse model cannot follow the plastic's highlight, and says so.
   const fitters::FitResult diffuse = fitters::FitModel(sphere, "lambert", fit_options);
   EXPECT_TRUE(HasWarning(diffuse, "model mismatch")) << AllWarnings(diffuse);
+
+  // The microfacet rungs on flat samples of themselves, over the hemisphere.
+  for (const char* name : {"ggx", "beckmann"}) {
+    options.sample = std::string("model:") + name + ":rho_d=0.2,0.1,0.05:f0=0.04:alpha=0.3";
+    const Measurement flat =
+        Measure(options, MakeSchedule("hemisphere:theta_i_step=20:theta_o_step=10:phi_o_step=30"));
+    const fitters::FitResult fit = fitters::FitModel(flat, name, fit_options);
+    EXPECT_FALSE(HasWarning(fit, "model mismatch")) << name << ": " << AllWarnings(fit);
+    EXPECT_FALSE(HasWarning(fit, "outliers")) << name << ": " << AllWarnings(fit);
+    EXPECT_NEAR(fit.model.Param("alpha"), 0.3, 3e-3) << name;
+  }
 }
 
 }  // namespace

@@ -13,7 +13,9 @@
 
 #include "cli/albedo_plot.h"
 #include "cli/slice_plot.h"
+#include "core/angles.h"
 #include "core/atomic_file.h"
+#include "core/colour.h"
 #include "core/errors.h"
 #include "energy/albedo.h"
 #include "export/export.h"
@@ -186,8 +188,35 @@ void FitDataset(const Measurement& measurement, const DemoOptions& options,
   dataset->seconds += SecondsSince(start);
 }
 
+// Illuminance in lux that the environment gives a plane facing the camera (+z): the integral of
+// its luminance times the cosine over that hemisphere, 90 x 360 cells in (theta, phi).
+double IlluminanceTowardCamera(const Environment& environment) {
+  constexpr int kTheta = 90, kPhi = 360;
+  const double d_theta = 0.5 * kPi / kTheta, d_phi = 2 * kPi / kPhi;
+  double irradiance = 0;
+  for (int i = 0; i < kTheta; ++i) {
+    const double theta = (i + 0.5) * d_theta;
+    for (int j = 0; j < kPhi; ++j) {
+      const Vec3 omega = SphericalDirection(theta, (j + 0.5) * d_phi);
+      irradiance += Luminance(environment.Radiance(omega)) * std::cos(theta) * std::sin(theta);
+    }
+  }
+  // 683 lm/W turns W/m^2 into lux as it turns W/(m^2 sr) into cd/m^2.
+  return RadianceToNits(irradiance * d_theta * d_phi);
+}
+
+// The brightest pixel of a rendered sphere, cd/m^2.
+double PeakNits(const Image& radiance) {
+  double peak = 0;
+  for (int64_t k = 0; k < radiance.pixel_count(); ++k) {
+    peak = std::max(peak, double(PixelLuminance(radiance.rgba.data() + k * Image::kChannels)));
+  }
+  return RadianceToNits(peak);
+}
+
 // Measured and fitted spheres side by side with the relative error, under the HDR environment
-// and under a direct-sun preset (DESIGN §8 sheets), through one tone pipeline each.
+// and under a daylight preset (DESIGN §8 sheets), through one tone pipeline each. The captions
+// give the lighting in lux and each sphere's peak luminance in cd/m^2 (nits).
 void RenderSheets(const DemoOptions& options, const Environment& environment,
                   DemoDataset* dataset) {
   const auto start = Clock::now();
@@ -208,9 +237,21 @@ void RenderSheets(const DemoOptions& options, const Environment& environment,
     std::vector<DirectionalLight> lights;
     const Environment* environment;
   };
+  const IlluminancePreset* sunny = nullptr;
+  for (const IlluminancePreset& preset : IlluminancePresets()) {
+    if (preset.name == "sunny") sunny = &preset;
+  }
+  if (sunny == nullptr) throw ComputeError("the 'sunny' illuminance preset is missing");
+  char env_caption[160], sunny_caption[160];
+  std::snprintf(env_caption, sizeof(env_caption),
+                "under the Venice sunset environment (%.4g lx on a plane facing the camera)",
+                IlluminanceTowardCamera(environment));
+  std::snprintf(sunny_caption, sizeof(sunny_caption),
+                "under the 'sunny' preset (%s: %.5g lx on a plane facing the light)",
+                sunny->description.c_str(), sunny->lux);
   const Lighting lightings[] = {
-      {"env", "under the Venice sunset environment", {}, &environment},
-      {"sunny", "under the 'sunny' preset (direct sun)", {PresetLight("sunny")}, nullptr},
+      {"env", env_caption, {}, &environment},
+      {"sunny", sunny_caption, {PresetLight("sunny")}, nullptr},
   };
   for (const Lighting& lighting : lightings) {
     const RenderResult a = RenderSphere(*measured, lighting.lights, lighting.environment, render);
@@ -219,9 +260,12 @@ void RenderSheets(const DemoOptions& options, const Environment& environment,
         ToneMapAndCompare(a.radiance, b.radiance, ToneOptions{}, "measured", fit_label);
     const std::string path = "images/" + dataset->name + "-" + lighting.name + ".png";
     WritePng(options.out_dir + "/" + path, sheet.sheet);
-    dataset->images.push_back(
-        {std::string("measured | fitted | error, ") + lighting.caption + ": " + sheet.Summary(),
-         path});
+    char peaks[128];
+    std::snprintf(peaks, sizeof(peaks), "; peak luminance %.4g cd/m^2 measured, %.4g fitted",
+                  PeakNits(a.radiance), PeakNits(b.radiance));
+    dataset->images.push_back({std::string("measured | fitted | error, ") + lighting.caption +
+                                   ": " + sheet.Summary() + peaks,
+                               path});
   }
   dataset->seconds += SecondsSince(start);
 }
