@@ -23,10 +23,22 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
   options.Validate();
   const auto start = std::chrono::steady_clock::now();
   const PreparedSamples prepared = PrepareSamples(measurement, options.loss);
+  // A large table: the candidates compete on the fit's own stratified subsample (BIC on a
+  // subsample is still BIC, and every candidate sees the same samples), and only the winner is
+  // polished on every sample. Small files, and callers that keep every fit, fit every candidate
+  // on all samples.
+  const bool on_subsample = all_fits == nullptr && options.max_samples > 0 &&
+                            prepared.samples.size() > options.max_samples;
+  PreparedSamples subsample;
+  if (on_subsample) {
+    subsample.samples = Subsample(prepared.samples, options.max_samples, options.seed);
+    subsample.weighting = prepared.weighting;
+  }
+  const PreparedSamples& contest = on_subsample ? subsample : prepared;
   std::vector<FitResult> fits;
   size_t best = 0;
   for (const std::string& name : AutoCandidates()) {
-    FitResult fit = FitPreparedSamples(prepared, name, options);
+    FitResult fit = FitPreparedSamples(contest, name, options);
     selection->candidates.push_back(
         {name, fit.bic, fit.metrics.rmse, fit.free_variables, fit.converged});
     // A clearly lower BIC wins; ties (to rounding) keep the earlier, simpler candidate. This
@@ -37,6 +49,7 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
       best = fits.size() - 1;
     }
   }
+  if (on_subsample) fits[best] = FitPreparedSamples(prepared, fits[best].model.name(), options);
   // The energy check and the diagnostics cost more than many fits of a small file: only the
   // chosen fit gets them, unless the caller keeps every fit.
   for (size_t k = 0; k < fits.size(); ++k) {
@@ -44,6 +57,7 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
   }
   const FitResult& chosen = fits[best];
   selection->chosen = chosen.model.name();
+  const CandidateScore& winner = selection->candidates[best];  // its score in the contest
   const CandidateScore* lambert = &selection->candidates.front();
   // The simplest lobed candidate the chosen one climbed past, for the sentence.
   const CandidateScore* power_cosine = nullptr;
@@ -63,17 +77,22 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
     std::snprintf(reason, sizeof(reason),
                   "%s has the lowest BIC (%.6g; best power-cosine lobe, %s, %.6g; lambert %.6g): "
                   "Fresnel and masking lower the rmse from %.4g (%s) to %.4g sr^-1",
-                  selection->chosen.c_str(), chosen.bic, power_cosine->model.c_str(),
+                  selection->chosen.c_str(), winner.bic, power_cosine->model.c_str(),
                   power_cosine->bic, lambert->bic, power_cosine->rmse, power_cosine->model.c_str(),
-                  chosen.metrics.rmse);
+                  winner.rmse);
   } else {
     std::snprintf(reason, sizeof(reason),
                   "%s has the lowest BIC (%.6g, lambert %.6g): the lobe lowers the rmse from "
                   "%.4g to %.4g sr^-1",
-                  selection->chosen.c_str(), chosen.bic, lambert->bic, lambert->rmse,
-                  chosen.metrics.rmse);
+                  selection->chosen.c_str(), winner.bic, lambert->bic, lambert->rmse, winner.rmse);
   }
   selection->reason = reason;
+  if (on_subsample) {
+    selection->reason += " (BIC and rmse of every candidate on the same " +
+                         std::to_string(subsample.samples.size()) +
+                         "-sample stratified subsample; the chosen model then fitted to all " +
+                         std::to_string(prepared.samples.size()) + ")";
+  }
   FitResult result = fits[best];
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (all_fits != nullptr) *all_fits = std::move(fits);

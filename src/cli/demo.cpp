@@ -12,6 +12,7 @@
 #include <iostream>
 
 #include "cli/albedo_plot.h"
+#include "cli/fit_options.h"
 #include "cli/slice_plot.h"
 #include "core/angles.h"
 #include "core/atomic_file.h"
@@ -365,8 +366,8 @@ DemoResult RunDemo(const DemoOptions& options) {
 void PrintDemoSummary(std::ostream& out, const DemoResult& result) {
   out << "Bundled real measurements (" << result.bundled.size() << " files):\n";
   PrintSummaryTable(out, result.bundled);
-  out << "\nFits (--model auto --loss log over lambert, phong, blinn-phong, blinn-phong-exact; "
-         "energy integrated over 90 incidence angles):\n";
+  out << "\nFits (--model auto --loss log over " << ModelNames()
+      << "; energy integrated over 90 incidence angles):\n";
   char line[512];
   std::snprintf(line, sizeof(line), "%-16s %-9s %8s %-17s %10s %10s %-22s %-10s %7s\n", "dataset",
                 "kind", "samples", "chosen", "rmse", "log rmse", "max albedo r,g,b", "energy",

@@ -158,7 +158,7 @@ ExportedMaterial MapToGltf(const MappingInput& input) {
   if (chosen.uses_specular_extension) {
     document["extensionsUsed"] = {"KHR_materials_specular"};
   }
-  document["materials"] = {material.parameters};
+  document["materials"] = nlohmann::json::array({material.parameters});
   material.text = document.dump(2) + "\n";
   return material;
 }
