@@ -47,16 +47,8 @@ ExportedMaterial MapToMitsuba3(const MappingInput& input) {
   material.target = Target::kMitsuba3;
   std::string body;
   if (!source.has_lobe) {
-    material.material = "diffuse";
-    material.exact = true;
-    material.parameters = {{"type", "diffuse"},
-                           {"reflectance", {source.rho_d[0], source.rho_d[1], source.rho_d[2]}}};
-    material.notes.push_back("diffuse reflectance = rho_d: exact (f = reflectance/pi)");
-    const Rgb rho_d = source.rho_d;
-    material.eval = [rho_d](const Vec3& wi, const Vec3& wo) -> Rgb {
-      return wi.z() > 0 && wo.z() > 0 ? Rgb(rho_d * kInvPi) : Rgb(Rgb::Zero());
-    };
-    body = DiffuseXml(rho_d, "    ", "brdfkit");
+    MapToExactDiffuse(source.rho_d, &material);
+    body = DiffuseXml(source.rho_d, "    ", "brdfkit");
   } else {
     const bool beckmann = source.model == "beckmann";
     const std::string distribution = beckmann ? "beckmann" : "ggx";

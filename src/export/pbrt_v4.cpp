@@ -45,16 +45,8 @@ ExportedMaterial MapToPbrtV4(const MappingInput& input) {
   ExportedMaterial material;
   material.target = Target::kPbrtV4;
   if (!source.has_lobe) {
-    material.material = "diffuse";
-    material.exact = true;
-    material.parameters = {{"type", "diffuse"},
-                           {"reflectance", {source.rho_d[0], source.rho_d[1], source.rho_d[2]}}};
-    material.notes.push_back("diffuse reflectance = rho_d: exact (f = reflectance/pi)");
-    const Rgb rho_d = source.rho_d;
-    material.eval = [rho_d](const Vec3& wi, const Vec3& wo) -> Rgb {
-      return wi.z() > 0 && wo.z() > 0 ? Rgb(rho_d * kInvPi) : Rgb(Rgb::Zero());
-    };
-    material.text = DiffuseText("brdfkit", rho_d);
+    MapToExactDiffuse(source.rho_d, &material);
+    material.text = DiffuseText("brdfkit", source.rho_d);
     return material;
   }
   MicrofacetLobe lobe;

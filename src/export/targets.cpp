@@ -29,6 +29,16 @@ std::string Num(double value) {
   return buffer;
 }
 
+void MapToExactDiffuse(const Rgb& rho_d, ExportedMaterial* material) {
+  material->material = "diffuse";
+  material->exact = true;
+  material->parameters = {{"type", "diffuse"}, {"reflectance", {rho_d[0], rho_d[1], rho_d[2]}}};
+  material->notes.push_back("diffuse reflectance = rho_d: exact (f = reflectance/pi)");
+  material->eval = [rho_d](const Vec3& wi, const Vec3& wo) -> Rgb {
+    return wi.z() > 0 && wo.z() > 0 ? Rgb(rho_d * kInvPi) : Rgb(Rgb::Zero());
+  };
+}
+
 double MappingLogRmse(const std::function<Rgb(const Vec3&, const Vec3&)>& renderer,
                       const MappingInput& input) {
   double sum = 0, weight = 0;

@@ -21,6 +21,9 @@ struct MappingInput {
 };
 
 ExportedMaterial MapToMitsuba3(const MappingInput& input);
+// A lobe-less fit as the renderers' `diffuse` material with reflectance rho_d: exact
+// (f = reflectance / pi). Sets the material's name, parameters, note and evaluator.
+void MapToExactDiffuse(const Rgb& rho_d, ExportedMaterial* material);
 ExportedMaterial MapToPbrtV4(const MappingInput& input);
 ExportedMaterial MapToGltf(const MappingInput& input);
 
