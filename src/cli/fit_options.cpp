@@ -10,26 +10,6 @@ std::string ModelNames() {
   return names;
 }
 
-fitters::FitOptions FitArguments::ToFitOptions(int threads) const {
-  if (!Automatic()) FindModel(model);  // a bad name fails here, before any file is read
-  fitters::FitOptions options;
-  options.loss = fitters::ParseLoss(loss);
-  options.robust = fitters::ParseRobust(robust);
-  options.max_samples = max_samples;
-  options.seed = seed;
-  options.threads = threads;
-  options.max_iterations = max_iterations;
-  options.grey_specular = grey_specular;
-  options.Validate();
-  return options;
-}
-
-brdf::ReadOptions FitArguments::ToReadOptions() const {
-  brdf::ReadOptions options;
-  options.illuminant = ParseIlluminant(illuminant);
-  return options;
-}
-
 void AddFitOptions(CLI::App* app, FitArguments* arguments) {
   app->add_option("--model", arguments->model,
                   ModelNames() + ", or auto (the simplest model the data support, by BIC)")

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include "core/errors.h"
+#include "fitters/fit_arguments.h"
 #include "fitters/report.h"
 #include "io/formats.h"
 #include "models/model_source.h"
@@ -126,19 +127,12 @@ the fitted model's f.)doc")
       [](const py::object& measurement_or_path, const std::string& model, const std::string& loss,
          const std::string& robust, size_t max_samples, uint64_t seed, int threads,
          int max_iterations, bool grey_specular, const std::string& illuminant) {
-        fitters::FitOptions options;
-        options.loss = fitters::ParseLoss(loss);
-        options.robust = fitters::ParseRobust(robust);
-        options.max_samples = max_samples;
-        options.seed = seed;
-        options.threads = threads;
-        options.max_iterations = max_iterations;
-        options.grey_specular = grey_specular;
-        options.Validate();
+        const fitters::FitArguments arguments{model, loss,           robust,        max_samples,
+                                              seed,  max_iterations, grey_specular, illuminant};
+        const fitters::FitOptions options = arguments.ToFitOptions(threads);
         std::shared_ptr<const Measurement> measurement;
         if (py::isinstance<py::str>(measurement_or_path)) {
-          ReadOptions read_options;
-          read_options.illuminant = ParseIlluminant(illuminant);
+          const ReadOptions read_options = arguments.ToReadOptions();
           const std::string path = measurement_or_path.cast<std::string>();
           py::gil_scoped_release release;
           measurement = std::make_shared<Measurement>(ReadMeasurement(path, read_options));

@@ -1,0 +1,27 @@
+#include "fitters/fit_arguments.h"
+
+#include "models/registry.h"
+
+namespace brdf::fitters {
+
+FitOptions FitArguments::ToFitOptions(int threads) const {
+  if (!Automatic()) FindModel(model);  // a bad name fails here, before any file is read
+  FitOptions options;
+  options.loss = ParseLoss(loss);
+  options.robust = ParseRobust(robust);
+  options.max_samples = max_samples;
+  options.seed = seed;
+  options.threads = threads;
+  options.max_iterations = max_iterations;
+  options.grey_specular = grey_specular;
+  options.Validate();
+  return options;
+}
+
+brdf::ReadOptions FitArguments::ToReadOptions() const {
+  brdf::ReadOptions options;
+  options.illuminant = ParseIlluminant(illuminant);
+  return options;
+}
+
+}  // namespace brdf::fitters

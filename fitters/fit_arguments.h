@@ -1,0 +1,30 @@
+// The fit's options as a user gives them, by name (DESIGN §3, §6): `--model`, `--loss`, ... of
+// `brdf fit` and `brdf batch`, and the keywords of brdfkit.fit. One parse and one validation
+// for all of them.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "fitters/fit.h"
+#include "io/formats.h"
+
+namespace brdf::fitters {
+
+struct FitArguments {
+  std::string model = "auto";
+  std::string loss = "l2";
+  std::string robust = "none";
+  size_t max_samples = FitOptions{}.max_samples;
+  uint64_t seed = 1;
+  int max_iterations = FitOptions{}.max_iterations;
+  bool grey_specular = false;
+  std::string illuminant = "D65";
+
+  bool Automatic() const { return model == "auto"; }
+  // Checks the model name (a usage error names the known ones) and the numbers.
+  FitOptions ToFitOptions(int threads) const;
+  brdf::ReadOptions ToReadOptions() const;
+};
+
+}  // namespace brdf::fitters
