@@ -118,7 +118,7 @@ TEST(Mpi, RankWithBadInputFailsTheMeasurementCleanly) {
 
 // A computation that fails on one rank while the others work (rank 1's detector is so noisy
 // that its reference reading averages below zero for seed 2, caught when its first incidence
-// is calibrated): exit status 3 for everyone, the rank named once, no output.
+// is calibrated): the job exits with status 3 (rank 0's), the rank named once, no output.
 TEST(Mpi, RankWhoseComputationFailsStopsTheJob) {
   SKIP_WITHOUT_MPI();
   ScratchDir dir;

@@ -14,7 +14,7 @@
 namespace {
 
 // Prints the error (rank 0 prints a job's failure for every rank; the others print only errors
-// of their own, naming their rank) and returns `status`. An error outside a distributed step
+// of their own, naming their rank) and returns the process's exit status. An error outside a distributed step
 // may leave the other ranks waiting for this one: the whole job is then ended with `status`.
 int ReportError(const std::string& message, int status) {
   if (brdf::ranks::Size() == 1) {
@@ -26,7 +26,14 @@ int ReportError(const std::string& message, int status) {
     std::cerr << "brdf: rank " + std::to_string(brdf::ranks::Rank()) + ": " + message + "\n";
     brdf::ranks::Abort(status);
   }
-  if (brdf::ranks::IsRoot()) std::cerr << "brdf: " + message + "\n";
+  if (!brdf::ranks::IsRoot()) {
+    // Rank 0 knows this failure too: it prints it once and ends the job with `status`. The other
+    // ranks end with 0, because mpirun kills every process still running at the first non-zero
+    // exit, and rank 0 may then be cut off while it removes its temporary output or finalizes
+    // MPI (seen as a segmentation fault of rank 0). The job's status is rank 0's either way.
+    return 0;
+  }
+  std::cerr << "brdf: " + message + "\n";
   return status;
 }
 
