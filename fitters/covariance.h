@@ -155,15 +155,14 @@ inline bool SandwichCovariance(const Eigen::MatrixXd& full_a, const Eigen::Matri
   return true;
 }
 
-// A = sum J_i^T J_i and B = sum J_i^T J_i e_i over the residual rows i, with e_i the squared
-// residual itself or, when `expected_squared` is given, its expectation (one per row, in the
-// problem's order: sample k's channel c is row 3 k + c): then A^-1 B A^-1 is the covariance a
-// fit of these samples will have, before any data exist (experiment_design.h). One parallel
-// pass over the residual blocks, summed in a fixed order.
-template <typename ModelType>
-void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem, const Variables& v,
-                  const std::vector<double>* expected_squared, Eigen::MatrixXd* a,
-                  Eigen::MatrixXd* b) {
+// Sums over every residual row of `problem` at `v`: add(partial, row_index, jacobian_row,
+// residual) for each row (rows numbered in the problem's order: sample k's channel c is row
+// 3 k + c), one parallel pass over the residual blocks (each evaluating its batches in parallel),
+// the blocks' partial sums combined in a fixed order, so the result does not depend on the
+// thread count.
+template <typename ModelType, typename Sums, typename Add, typename Combine>
+Sums SumOverRows(const ModelFitter<ModelType>& fitter, ceres::Problem* problem, const Variables& v,
+                 const Sums& zero, Add&& add, Combine&& combine) {
   Variables at = v;
   std::vector<double*> blocks;
   std::vector<int> sizes;
@@ -177,25 +176,40 @@ void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
         first_row[k] +
         problem->GetCostFunctionForResidualBlock(residual_blocks[k])->num_residuals();
   }
-  struct Sums {
-    Eigen::MatrixXd a, b;
-  };
-  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
-  // One residual block per chunk (each evaluates in parallel), summed in a fixed order.
-  const Sums sums = DeterministicReduce(
-      static_cast<int64_t>(residual_blocks.size()), 1, Sums{zero, zero},
+  return DeterministicReduce(
+      static_cast<int64_t>(residual_blocks.size()), 1, zero,
       [&](int64_t begin, int64_t end, Sums partial) {
         for (int64_t index = begin; index < end; ++index) {
           VisitBlockRows(problem->GetCostFunctionForResidualBlock(residual_blocks[index]), blocks,
                          sizes, n, [&](int r, const Eigen::VectorXd& row, double residual) {
-                           const double e = expected_squared != nullptr
-                                                ? (*expected_squared)[first_row[index] + r]
-                                                : residual * residual;
-                           partial.a.template selfadjointView<Eigen::Lower>().rankUpdate(row);
-                           partial.b.template selfadjointView<Eigen::Lower>().rankUpdate(row, e);
+                           add(partial, first_row[index] + r, row, residual);
                          });
         }
         return partial;
+      },
+      combine);
+}
+
+// A = sum J_i^T J_i and B = sum J_i^T J_i e_i over the residual rows i, with e_i the squared
+// residual itself or, when `expected_squared` is given, its expectation (one per row, in the
+// problem's order): then A^-1 B A^-1 is the covariance a fit of these samples will have, before
+// any data exist (experiment_design.h).
+template <typename ModelType>
+void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem, const Variables& v,
+                  const std::vector<double>* expected_squared, Eigen::MatrixXd* a,
+                  Eigen::MatrixXd* b) {
+  struct Sums {
+    Eigen::MatrixXd a, b;
+  };
+  const int n = fitter.FreeVariables();
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
+  const Sums sums = SumOverRows(
+      fitter, problem, v, Sums{zero, zero},
+      [&](Sums& partial, int64_t row_index, const Eigen::VectorXd& row, double residual) {
+        const double e =
+            expected_squared != nullptr ? (*expected_squared)[row_index] : residual * residual;
+        partial.a.template selfadjointView<Eigen::Lower>().rankUpdate(row);
+        partial.b.template selfadjointView<Eigen::Lower>().rankUpdate(row, e);
       },
       [](Sums x, const Sums& y) {
         x.a += y.a;

@@ -249,16 +249,19 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
     if (sample.missing || !sample.value.allFinite()) continue;
     largest = std::max(largest, sample.value.abs().maxCoeff());
   }
+  const auto is_usable = [](const Sample& sample) {
+    return !sample.missing && sample.value.allFinite() && sample.wi.z() > 0 && sample.wo.z() > 0;
+  };
+  const size_t usable_count = static_cast<size_t>(
+      std::count_if(measurement.samples.begin(), measurement.samples.end(), is_usable));
   std::vector<double> z;
   std::vector<size_t> owner;  // the usable sample (in file order) each score belongs to
-  z.reserve(3 * measurement.samples.size());
+  z.reserve(3 * usable_count);
+  owner.reserve(3 * usable_count);
   size_t usable = 0;
   for (size_t k = 0; k < measurement.samples.size(); ++k) {
     const Sample& sample = measurement.samples[k];
-    if (sample.missing || !sample.value.allFinite() || !(sample.wi.z() > 0) ||
-        !(sample.wo.z() > 0)) {
-      continue;
-    }
+    if (!is_usable(sample)) continue;
     const Rgb f = model.Eval(sample.wi, sample.wo);
     for (int c = 0; c < 3; ++c) {
       double difference = sample.value[c] - f[c];

@@ -19,6 +19,7 @@
 #include "fitters/energy_check.h"
 #include "fitters/model_fitter.h"
 #include "fitters/multi_start.h"
+#include "fitters/streamed_polish.h"
 
 namespace brdf::fitters {
 namespace {
@@ -109,9 +110,21 @@ FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared,
   }
   const std::vector<FitSample>& polish_samples =
       options.robust == Robust::kNone ? all : final_samples;
+  // On a subsampled (large) table the polish sums the normal equations instead of storing the
+  // Jacobian (streamed_polish.h); small sets keep Ceres' own solve.
   auto problem = fitter.BuildProblem(polish_samples, &final_variables);
-  const ceres::Solver::Summary summary = fitter.Solve(problem.get(), options.max_iterations);
-  iterations += static_cast<int>(summary.iterations.size());
+  PolishSummary polish;
+  if (subsampled) {
+    polish = StreamedPolish(fitter, problem.get(), &final_variables, options.max_iterations);
+  } else {
+    const ceres::Solver::Summary summary = fitter.Solve(problem.get(), options.max_iterations);
+    polish.iterations = static_cast<int>(summary.iterations.size());
+    polish.initial_cost = summary.initial_cost;
+    polish.final_cost = summary.final_cost;
+    polish.converged = Converged(summary);
+    polish.report = summary.BriefReport();
+  }
+  iterations += polish.iterations;
 
   std::vector<double> params = fitter.Params(final_variables);
   bool finite =
@@ -127,10 +140,10 @@ FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared,
   result.samples = all.size();
   result.skipped = prepared.skipped_missing + prepared.skipped_invalid;
   result.weighting = prepared.weighting;
-  result.converged = finite && Converged(summary);
+  result.converged = finite && polish.converged;
   result.iterations = iterations;
-  result.final_cost = summary.final_cost;
-  result.termination = summary.BriefReport();
+  result.final_cost = polish.final_cost;
+  result.termination = polish.report;
   result.free_variables = fitter.FreeVariables();
   result.metrics = ComputeMetrics(result.model, all);
   if (subsampled) {
@@ -149,12 +162,16 @@ FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared,
   }
 
   // Information criterion from the plain weighted residuals (the loss's, not the robust one).
-  std::vector<double> residuals;
-  ceres::Problem::EvaluateOptions evaluate_options;
-  problem->Evaluate(evaluate_options, nullptr, &residuals, nullptr, nullptr);
   double rss = 0;
-  for (double r : residuals) rss += r * r;
-  const double n = static_cast<double>(residuals.size());
+  if (subsampled) {  // without the vector of every residual
+    rss = 2 * polish_detail::HalfSquaredSum(fitter, problem.get(), final_variables);
+  } else {
+    std::vector<double> residuals;
+    ceres::Problem::EvaluateOptions evaluate_options;
+    problem->Evaluate(evaluate_options, nullptr, &residuals, nullptr, nullptr);
+    for (double r : residuals) rss += r * r;
+  }
+  const double n = 3.0 * static_cast<double>(polish_samples.size());
   result.bic = n * std::log(std::max(rss, 1e-300) / n) + result.free_variables * std::log(n);
   return result;
 }

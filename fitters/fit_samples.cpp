@@ -77,14 +77,21 @@ const char* LossName(Loss loss) {
 PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
   PreparedSamples prepared;
   std::vector<size_t> source_index;
+  const auto usable = [](const Sample& sample) {
+    return !sample.missing && sample.value.isFinite().all() && sample.wi.z() > 0 &&
+           sample.wo.z() > 0;
+  };
+  // Sized once: growing a vector of a million samples by doubling would hold the old and the
+  // new copy at once and clear pages for both.
+  const size_t count = static_cast<size_t>(
+      std::count_if(measurement.samples.begin(), measurement.samples.end(), usable));
+  prepared.samples.reserve(count);
+  const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
+  if (per_sample_columns) source_index.reserve(count);
   for (size_t k = 0; k < measurement.samples.size(); ++k) {
     const Sample& sample = measurement.samples[k];
-    if (sample.missing) {
-      ++prepared.skipped_missing;
-      continue;
-    }
-    if (!sample.value.isFinite().all() || sample.wi.z() <= 0 || sample.wo.z() <= 0) {
-      ++prepared.skipped_invalid;
+    if (!usable(sample)) {
+      ++(sample.missing ? prepared.skipped_missing : prepared.skipped_invalid);
       continue;
     }
     FitSample fit_sample;
@@ -93,7 +100,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
     fit_sample.cos_theta_i = sample.wi.z();
     fit_sample.value = sample.value;
     prepared.samples.push_back(fit_sample);
-    source_index.push_back(k);
+    if (per_sample_columns) source_index.push_back(k);
   }
   std::vector<FitSample>& samples = prepared.samples;
   if (samples.empty()) {

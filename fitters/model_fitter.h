@@ -143,19 +143,35 @@ class ModelFitter {
         problem->AddResidualBlock(cost, loss, v->d);
       }
     }
+    const Bounds bounds = VariableBounds();
     for (int k = 0; k < 3; ++k) {
-      problem->SetParameterLowerBound(v->d, k, -FitVariables::kLogisticBound);
-      problem->SetParameterUpperBound(v->d, k, FitVariables::kLogisticBound);
+      problem->SetParameterLowerBound(v->d, k, bounds.lower[k]);
+      problem->SetParameterUpperBound(v->d, k, bounds.upper[k]);
     }
     if constexpr (kLobed) {
       for (int k = 0; k < s_size; ++k) {
-        problem->SetParameterLowerBound(v->s, k, -FitVariables::kLogisticBound);
-        problem->SetParameterUpperBound(v->s, k, FitVariables::kLogisticBound);
+        problem->SetParameterLowerBound(v->s, k, bounds.lower[3 + k]);
+        problem->SetParameterUpperBound(v->s, k, bounds.upper[3 + k]);
       }
-      problem->SetParameterLowerBound(v->shape, 0, ShapeLowerBound<ModelType>());
-      problem->SetParameterUpperBound(v->shape, 0, ShapeUpperBound<ModelType>());
+      problem->SetParameterLowerBound(v->shape, 0, bounds.lower[3 + s_size]);
+      problem->SetParameterUpperBound(v->shape, 0, bounds.upper[3 + s_size]);
     }
     return problem;
+  }
+
+  // The box of the free variables, in the order d, s, shape (FreeVariables() of each).
+  struct Bounds {
+    std::vector<double> lower, upper;
+  };
+  Bounds VariableBounds() const {
+    Bounds bounds;
+    bounds.lower.assign(FreeVariables(), -FitVariables::kLogisticBound);
+    bounds.upper.assign(FreeVariables(), FitVariables::kLogisticBound);
+    if constexpr (kLobed) {
+      bounds.lower.back() = ShapeLowerBound<ModelType>();
+      bounds.upper.back() = ShapeUpperBound<ModelType>();
+    }
+    return bounds;
   }
 
   ceres::Solver::Summary Solve(ceres::Problem* problem, int max_iterations) const {

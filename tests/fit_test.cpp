@@ -123,6 +123,40 @@ TEST(Fit, NoisyDataLandWithinThreeStandardErrors) {
   }
 }
 
+// A subsampled fit's final solve sums the normal equations over the rows instead of storing the
+// Jacobian (fitters/streamed_polish.h). On the same samples it must land where Ceres' own solve
+// lands: both minimize one cost, so they may differ only by their tolerances, far below the
+// parameters' standard errors.
+TEST(Fit, StreamedPolishLandsWhereCeresDoes) {
+  Noise noise;
+  noise.relative = 0.01;
+  for (const char* text : kTruths) {
+    const Model truth = ParseModel(text);
+    const Measurement data = Synthesize(truth, noise);
+    FitOptions every_sample;
+    every_sample.max_samples = 0;  // no subsample: Ceres solves on all samples
+    FitOptions subsampled;
+    subsampled.max_samples = 1000;
+    const FitResult ceres_fit = FitModel(data, truth.name(), every_sample);
+    const FitResult streamed_fit = FitModel(data, truth.name(), subsampled);
+    EXPECT_NE(ceres_fit.termination.find("Ceres"), std::string::npos) << ceres_fit.termination;
+    EXPECT_NE(streamed_fit.termination.find("streamed"), std::string::npos)
+        << streamed_fit.termination;
+    EXPECT_TRUE(streamed_fit.converged) << text << ": " << streamed_fit.termination;
+    ASSERT_TRUE(ceres_fit.stderr_available && streamed_fit.stderr_available) << text;
+    for (size_t p = 0; p < truth.params().size(); ++p) {
+      EXPECT_NEAR(streamed_fit.model.params()[p], ceres_fit.model.params()[p],
+                  1e-3 * ceres_fit.stderr_values[p])
+          << text << " parameter " << p;
+      EXPECT_NEAR(streamed_fit.stderr_values[p], ceres_fit.stderr_values[p],
+                  1e-3 * ceres_fit.stderr_values[p])
+          << text << " parameter " << p;
+    }
+    EXPECT_NEAR(streamed_fit.bic, ceres_fit.bic, 1e-9 * std::abs(ceres_fit.bic)) << text;
+    EXPECT_NEAR(streamed_fit.final_cost, ceres_fit.final_cost, 1e-9 * ceres_fit.final_cost) << text;
+  }
+}
+
 TEST(Fit, CauchySurvivesBlindSpots) {
   Noise noise;
   noise.zeroed_fraction = 0.02;

@@ -1,0 +1,209 @@
+// The final solve of a fit on a large table (a MERL file: a million samples and more), without
+// holding its Jacobian.
+//
+// Ceres' dense solvers store the whole Jacobian, rows x variables (3.3 M x 7 doubles, 184 MB,
+// for a MERL table) plus its scratch copies: more than the samples themselves. Every one of our
+// problems has at most seven variables, so the normal equations J^T J (7 x 7) and J^T r are all a
+// Gauss-Newton step needs, and they are sums over the rows (SumOverRows, covariance.h). This is
+// Levenberg-Marquardt on those sums, with Ceres' own step control (trust region radius mu,
+// (J^T J + diag(J^T J) / mu) delta = -J^T r, the radius grown by 1 / max(1/3, 1 - (2 rho - 1)^3)
+// on success and shrunk by a doubling factor on failure; Madsen, Nielsen & Tingleff 2004, §3.2)
+// and the same tolerances as ModelFitter::Solve. Steps are clipped to the variables' box, as
+// Ceres projects them. The start is the optimum on the stratified subsample, so it usually ends
+// after one or two steps. Deterministic: the sums run in a fixed order for any thread count.
+#pragma once
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/deterministic_reduce.h"
+#include "core/text.h"
+#include "fitters/covariance.h"
+#include "fitters/model_fitter.h"
+
+namespace brdf::fitters {
+
+struct PolishSummary {
+  int iterations = 0;
+  double initial_cost = 0;  // 1/2 sum r^2, as Ceres reports it
+  double final_cost = 0;
+  bool converged = false;
+  std::string report;  // one line, for the fit report's "termination"
+};
+
+namespace polish_detail {
+
+// The tolerances of ModelFitter::Solve and Ceres' defaults for the step control.
+constexpr double kFunctionTolerance = 1e-12;
+constexpr double kGradientTolerance = 1e-14;
+constexpr double kParameterTolerance = 1e-12;
+constexpr double kInitialRadius = 1e4;
+constexpr double kMinRelativeDecrease = 1e-3;
+constexpr double kMinDiagonal = 1e-6, kMaxDiagonal = 1e32;
+
+template <typename ModelType>
+Eigen::VectorXd Flatten(const ModelFitter<ModelType>& fitter, const Variables& v) {
+  Eigen::VectorXd x(fitter.FreeVariables());
+  int k = 0;
+  for (int c = 0; c < 3; ++c) x[k++] = v.d[c];
+  if constexpr (ModelFitter<ModelType>::kLobed) {
+    for (int c = 0; c < fitter.SpecularSize(); ++c) x[k++] = v.s[c];
+    x[k++] = v.shape[0];
+  }
+  return x;
+}
+
+template <typename ModelType>
+Variables Unflatten(const ModelFitter<ModelType>& fitter, const Eigen::VectorXd& x) {
+  Variables v;
+  int k = 0;
+  for (int c = 0; c < 3; ++c) v.d[c] = x[k++];
+  if constexpr (ModelFitter<ModelType>::kLobed) {
+    for (int c = 0; c < fitter.SpecularSize(); ++c) v.s[c] = x[k++];
+    v.shape[0] = x[k++];
+  }
+  return v;
+}
+
+// 1/2 sum r^2 over the problem at `v`, residuals only (no derivatives), in a fixed order.
+template <typename ModelType>
+double HalfSquaredSum(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                      const Variables& v) {
+  Variables at = v;
+  std::vector<double*> blocks;
+  std::vector<int> sizes;
+  ProblemBlocks(fitter, &at, &blocks, &sizes);
+  std::vector<ceres::ResidualBlockId> residual_blocks;
+  problem->GetResidualBlocks(&residual_blocks);
+  return DeterministicReduce(
+      static_cast<int64_t>(residual_blocks.size()), 1, 0.0,
+      [&](int64_t begin, int64_t end, double partial) {
+        std::vector<double> residuals;
+        for (int64_t index = begin; index < end; ++index) {
+          const ceres::CostFunction* cost =
+              problem->GetCostFunctionForResidualBlock(residual_blocks[index]);
+          residuals.resize(cost->num_residuals());
+          if (!cost->Evaluate(blocks.data(), residuals.data(), nullptr)) {
+            return std::numeric_limits<double>::infinity();
+          }
+          for (double r : residuals) partial += 0.5 * r * r;
+        }
+        return partial;
+      },
+      [](double a, double b) { return a + b; });
+}
+
+struct Normal {
+  Eigen::MatrixXd a;  // J^T J
+  Eigen::VectorXd g;  // J^T r, the gradient of the cost
+  double cost = 0;
+};
+
+template <typename ModelType>
+Normal Linearize(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                 const Variables& v) {
+  const int n = fitter.FreeVariables();
+  Normal zero{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n), 0.0};
+  Normal sums = SumOverRows(
+      fitter, problem, v, zero,
+      [](Normal& partial, int64_t, const Eigen::VectorXd& row, double residual) {
+        partial.a.selfadjointView<Eigen::Lower>().rankUpdate(row);
+        partial.g += residual * row;
+        partial.cost += 0.5 * residual * residual;
+      },
+      [](Normal x, const Normal& y) {
+        x.a += y.a;
+        x.g += y.g;
+        x.cost += y.cost;
+        return x;
+      });
+  sums.a = sums.a.selfadjointView<Eigen::Lower>();
+  return sums;
+}
+
+}  // namespace polish_detail
+
+// Minimizes the problem's cost from `v` (updated in place) within the fitter's variable box.
+template <typename ModelType>
+PolishSummary StreamedPolish(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                             Variables* v, int max_iterations) {
+  using namespace polish_detail;
+  const typename ModelFitter<ModelType>::Bounds bounds = fitter.VariableBounds();
+  const int n = fitter.FreeVariables();
+  const Eigen::Map<const Eigen::VectorXd> lower(bounds.lower.data(), n);
+  const Eigen::Map<const Eigen::VectorXd> upper(bounds.upper.data(), n);
+  Eigen::VectorXd x = Flatten(fitter, *v);
+  Normal current = Linearize(fitter, problem, *v);
+  PolishSummary summary;
+  summary.initial_cost = current.cost;
+  std::string reason = "maximum iterations reached";
+  double radius = kInitialRadius, shrink = 2.0;
+  if (!std::isfinite(current.cost)) reason = "the cost at the start is not finite";
+  while (std::isfinite(current.cost) && summary.iterations < max_iterations) {
+    // Converged when a steepest-descent step projected onto the box no longer moves.
+    const Eigen::VectorXd projected = x - (x - current.g).cwiseMax(lower).cwiseMin(upper);
+    if (projected.lpNorm<Eigen::Infinity>() <= kGradientTolerance) {
+      summary.converged = true;
+      reason = "gradient tolerance";
+      break;
+    }
+    const Eigen::VectorXd diagonal =
+        current.a.diagonal().cwiseMax(kMinDiagonal).cwiseMin(kMaxDiagonal);
+    Eigen::MatrixXd damped = current.a;
+    damped.diagonal() += diagonal / radius;
+    const Eigen::VectorXd delta = damped.ldlt().solve(-current.g);
+    const Eigen::VectorXd candidate = (x + delta).cwiseMax(lower).cwiseMin(upper);
+    const Eigen::VectorXd step = candidate - x;
+    ++summary.iterations;
+    if (!step.allFinite()) {
+      reason = "the linear system has no finite solution";
+      break;
+    }
+    if (step.norm() <= kParameterTolerance * (x.norm() + kParameterTolerance)) {
+      summary.converged = true;
+      reason = "parameter tolerance";
+      break;
+    }
+    const double model_decrease = -(current.g.dot(step) + 0.5 * step.dot(current.a * step));
+    const Variables trial = Unflatten(fitter, candidate);
+    const double trial_cost = HalfSquaredSum(fitter, problem, trial);
+    const double rho = (current.cost - trial_cost) / model_decrease;
+    if (std::isfinite(trial_cost) && model_decrease > 0 && rho > kMinRelativeDecrease) {
+      const double decrease = current.cost - trial_cost;
+      x = candidate;
+      *v = trial;
+      radius /= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+      shrink = 2.0;
+      if (decrease <= kFunctionTolerance * current.cost) {
+        current.cost = trial_cost;
+        summary.converged = true;
+        reason = "function tolerance";
+        break;
+      }
+      current = Linearize(fitter, problem, *v);
+    } else {
+      radius /= shrink;
+      shrink *= 2.0;
+      if (radius < 1e-32) {  // Ceres' min_trust_region_radius
+        summary.converged = true;
+        reason = "trust region radius below its minimum";
+        break;
+      }
+    }
+  }
+  summary.final_cost = current.cost;
+  summary.report = "streamed Levenberg-Marquardt (normal equations summed over the rows): " +
+                   std::to_string(summary.iterations) + " iterations, cost " +
+                   FormatNumber(summary.initial_cost, 6) + " -> " +
+                   FormatNumber(summary.final_cost, 6) + ", " +
+                   (summary.converged ? "CONVERGENCE" : "NO_CONVERGENCE") + " (" + reason + ")";
+  return summary;
+}
+
+}  // namespace brdf::fitters
