@@ -14,8 +14,9 @@
 namespace {
 
 // Prints the error (rank 0 prints a job's failure for every rank; the others print only errors
-// of their own, naming their rank) and returns the process's exit status. An error outside a distributed step
-// may leave the other ranks waiting for this one: the whole job is then ended with `status`.
+// of their own, naming their rank) and returns the process's exit status. An error outside a
+// distributed step may leave the other ranks waiting for this one: the whole job is then ended with
+// `status`.
 int ReportError(const std::string& message, int status) {
   if (brdf::ranks::Size() == 1) {
     std::cerr << "brdf: " + message + "\n";
