@@ -1,6 +1,7 @@
 #include "gonio/traced_surface.h"
 
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -16,6 +17,21 @@ namespace brdf::gonio {
 namespace {
 
 constexpr int kRaysPerBatch = 4096;
+// Batches traced together, sorted by where their paths enter the tile (TraceIncidence).
+constexpr int kBatchesPerSweep = 64;
+// The sort's grid over the tile: kSortCells² cells along a Morton curve.
+constexpr uint32_t kSortCells = 128;
+
+// Interleaves the bits of x and y (each below 2^16): the Z-order index of cell (x, y).
+uint32_t MortonKey(uint32_t x, uint32_t y) {
+  const auto spread = [](uint32_t v) {
+    v = (v | (v << 8)) & 0x00ff00ffu;
+    v = (v | (v << 4)) & 0x0f0f0f0fu;
+    v = (v | (v << 2)) & 0x33333333u;
+    return (v | (v << 1)) & 0x55555555u;
+  };
+  return spread(x) | (spread(y) << 1);
+}
 // Lateral wraps before a path is abandoned: only a ray almost parallel to the mean surface
 // crosses this many tiles, and its weight is lost either way.
 constexpr int kMaxWraps = 256;
@@ -23,11 +39,14 @@ constexpr int kMaxWraps = 256;
 constexpr int kRouletteAfter = 3;
 
 // Detector cones indexed by 1° cells of (theta, phi) so that an escaping ray is compared with
-// the few detectors that can contain it, not with all of them.
+// the few detectors that can contain it, not with all of them. The cells' lists are stored one
+// after another (offsets into one array), so a look-up touches two cache lines, not a
+// separately allocated list per cell.
 class DetectorLookup {
  public:
   DetectorLookup(const std::vector<Vec3>& detectors, double cos_half_angle)
-      : detectors_(detectors), cos_half_angle_(cos_half_angle), cells_(kThetaCells * kPhiCells) {
+      : detectors_(detectors), cos_half_angle_(cos_half_angle) {
+    std::vector<std::vector<int>> cells(kThetaCells * kPhiCells);
     const double radius = std::acos(cos_half_angle);
     for (size_t k = 0; k < detectors.size(); ++k) {
       const double theta = Theta(detectors[k]), phi = Phi(detectors[k]);
@@ -42,20 +61,25 @@ class DetectorLookup {
       const int last = all_phi ? kPhiCells - 1 : CellPhi(phi) + phi_span;
       for (int t = theta_low; t <= theta_high; ++t) {
         for (int p = first; p <= last; ++p) {
-          cells_[t * kPhiCells + ((p % kPhiCells) + kPhiCells) % kPhiCells].push_back(int(k));
+          cells[t * kPhiCells + ((p % kPhiCells) + kPhiCells) % kPhiCells].push_back(int(k));
         }
       }
     }
-    for (auto& cell : cells_) {  // a detector may have been added twice through phi wrap
+    offsets_.reserve(cells.size() + 1);
+    offsets_.push_back(0);
+    for (auto& cell : cells) {  // a detector may have been added twice through phi wrap
       std::sort(cell.begin(), cell.end());
       cell.erase(std::unique(cell.begin(), cell.end()), cell.end());
+      members_.insert(members_.end(), cell.begin(), cell.end());
+      offsets_.push_back(static_cast<uint32_t>(members_.size()));
     }
   }
 
   template <typename Visit>
   void ForEachContaining(const Vec3& w, Visit&& visit) const {
-    const std::vector<int>& cell = cells_[CellTheta(Theta(w)) * kPhiCells + CellPhi(Phi(w))];
-    for (int k : cell) {
+    const int cell = CellTheta(Theta(w)) * kPhiCells + CellPhi(Phi(w));
+    for (uint32_t m = offsets_[cell]; m < offsets_[cell + 1]; ++m) {
+      const int k = members_[m];
       if (w.dot(detectors_[k]) >= cos_half_angle_) visit(k);
     }
   }
@@ -72,7 +96,8 @@ class DetectorLookup {
 
   const std::vector<Vec3>& detectors_;
   double cos_half_angle_;
-  std::vector<std::vector<int>> cells_;
+  std::vector<uint32_t> offsets_;  // cell c holds members_[offsets_[c] .. offsets_[c + 1])
+  std::vector<int> members_;
 };
 
 }  // namespace
@@ -204,62 +229,131 @@ std::string TracedSurfaceSample::Modelled() const {
          "the Monte Carlo standard error";
 }
 
+// What one path delivered, kept until its batch is summed in ray order.
+struct TracedSurfaceSample::PathResult {
+  Vec3 direction = Vec3::Zero();  // the escape direction
+  Rgb power = Rgb::Zero();        // the throughput that escaped (0 if the path did not)
+  double incident = 0;            // the source weight of the ray
+  int32_t segments = 0;
+  bool escaped = false, cut = false;
+};
+
+TracedSurfaceSample::PathResult TracedSurfaceSample::TracePath(const Instrument& instrument,
+                                                               const Vec3& wi,
+                                                               uint64_t incidence_seed,
+                                                               int64_t ray) const {
+  PathResult result;
+  Rng rng(incidence_seed, Stream::kRayPath, static_cast<uint64_t>(ray));
+  double weight = 0;
+  const double u1 = rng.Uniform(), u2 = rng.Uniform();
+  const Vec3 wi_source = instrument.SourceDirection(wi, u1, u2, &weight);
+  result.incident = weight;
+  if (weight <= 0) return result;
+  const double tile = scene_->size();
+  // Separate statements: argument evaluation order is unspecified, and the output must not
+  // depend on the compiler.
+  const double x = rng.Uniform() * tile;
+  const double y = rng.Uniform() * tile;
+  Vec3 origin(x, y, scene_->top());
+  Vec3 direction = -wi_source;
+  Rgb throughput = Rgb::Constant(weight);
+  int64_t segments = 0;
+  for (int bounce = 0;; ++bounce) {
+    Vec3 normal;
+    bool escaped = false;
+    if (!scene_->Intersect(&origin, direction, &normal, &escaped, &segments)) {
+      if (escaped) {
+        result.escaped = true;
+        result.power = throughput;
+        result.direction = direction;
+      }
+      break;
+    }
+    if (bounce == spec_.bounces) {
+      result.cut = true;
+      break;
+    }
+    const Frame facet = Frame::FromZ(normal);
+    const double s0 = rng.Uniform();
+    const double s1 = rng.Uniform();
+    const Vec3 wo_local = material_.Scatter(facet.ToLocal(-direction), s0, s1, &throughput);
+    if (wo_local.z() <= 0) break;
+    direction = facet.FromLocal(wo_local).normalized();
+    origin += 1e-4 * normal;  // step off the facet so the next ray does not hit it again
+    if (bounce + 1 >= kRouletteAfter) {
+      const double survival = std::min(1.0, throughput.maxCoeff() / weight);
+      if (survival <= 0 || rng.Uniform() >= survival) break;
+      throughput /= survival;
+    }
+  }
+  result.segments = static_cast<int32_t>(segments);
+  return result;
+}
+
 TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
     const Instrument& instrument, const Vec3& wi, const std::vector<Vec3>& detectors, uint64_t seed,
     uint64_t incidence_index, int64_t rays) const {
   const DetectorLookup lookup(detectors, instrument.DetectorCosHalfAngle());
   const int64_t batches = (rays + kRaysPerBatch - 1) / kRaysPerBatch;
   std::vector<Trace> partial(batches);
-  const double tile = scene_->size();
-  // One stream per (incidence, batch): the batch, not the thread, owns its random numbers.
+  // Every path has its own random stream, derived from (incidence, ray index): neither the
+  // thread nor the order in which paths are traced shows in the result.
   const uint64_t incidence_seed = Rng(seed, Stream::kRayBatch, incidence_index).NextU64();
-  tbb::parallel_for(int64_t{0}, batches, [&](int64_t b) {
-    Trace& trace = partial[b];
-    trace.detector_power.assign(detectors.size(), Rgb::Zero());
-    Rng rng(incidence_seed, Stream::kRayBatch, static_cast<uint64_t>(b));
-    const int64_t count = std::min<int64_t>(kRaysPerBatch, rays - b * kRaysPerBatch);
-    for (int64_t r = 0; r < count; ++r) {
-      double weight = 0;
-      const double u1 = rng.Uniform(), u2 = rng.Uniform();
-      const Vec3 wi_source = instrument.SourceDirection(wi, u1, u2, &weight);
-      trace.incident += weight;
-      if (weight <= 0) continue;
-      Vec3 origin(rng.Uniform() * tile, rng.Uniform() * tile, scene_->top());
-      Vec3 direction = -wi_source;
-      Rgb throughput = Rgb::Constant(weight);
-      for (int bounce = 0;; ++bounce) {
-        Vec3 normal;
-        bool escaped = false;
-        if (!scene_->Intersect(&origin, direction, &normal, &escaped, &trace.segments)) {
-          if (escaped) {
-            trace.reflected += throughput;
-            ++trace.escaped;
-            lookup.ForEachContaining(direction,
-                                     [&](int k) { trace.detector_power[k] += throughput; });
-          }
-          break;
-        }
-        if (bounce == spec_.bounces) {
-          ++trace.paths_cut;
-          break;
-        }
-        const Frame facet = Frame::FromZ(normal);
-        // Separate statements: argument evaluation order is unspecified, and the output must
-        // not depend on the compiler.
-        const double s0 = rng.Uniform();
-        const double s1 = rng.Uniform();
-        const Vec3 wo_local = material_.Scatter(facet.ToLocal(-direction), s0, s1, &throughput);
-        if (wo_local.z() <= 0) break;
-        direction = facet.FromLocal(wo_local).normalized();
-        origin += 1e-4 * normal;  // step off the facet so the next ray does not hit it again
-        if (bounce + 1 >= kRouletteAfter) {
-          const double survival = std::min(1.0, throughput.maxCoeff() / weight);
-          if (survival <= 0 || rng.Uniform() >= survival) break;
-          throughput /= survival;
-        }
+  // The paths are traced in sweeps of whole batches, each sweep in the order of its entry
+  // points along a Morton curve over the tile: neighbouring paths then walk the same part of
+  // the BVH, which stays in cache. In random order nearly every query missed the cache.
+  std::vector<PathResult> results;
+  std::vector<uint32_t> keys, order, bucket_start;
+  for (int64_t first_batch = 0; first_batch < batches; first_batch += kBatchesPerSweep) {
+    const int64_t last_batch = std::min(batches, first_batch + kBatchesPerSweep);
+    const int64_t first = first_batch * kRaysPerBatch;
+    const int64_t count = std::min(rays, last_batch * kRaysPerBatch) - first;
+    keys.resize(count);
+    tbb::parallel_for(int64_t{0}, count, int64_t{4096}, [&](int64_t begin) {
+      const int64_t end = std::min(count, begin + 4096);
+      for (int64_t i = begin; i < end; ++i) {
+        Rng rng(incidence_seed, Stream::kRayPath, static_cast<uint64_t>(first + i));
+        rng.Uniform();  // the source direction's two numbers
+        rng.Uniform();
+        const double x = rng.Uniform();
+        const double y = rng.Uniform();
+        keys[i] = MortonKey(static_cast<uint32_t>(x * kSortCells),
+                            static_cast<uint32_t>(y * kSortCells));
       }
-    }
-  });
+    });
+    // Counting sort by key: stable, so paths of one cell keep their index order.
+    bucket_start.assign(size_t(kSortCells) * kSortCells + 1, 0);
+    for (uint32_t key : keys) ++bucket_start[key + 1];
+    for (size_t k = 1; k < bucket_start.size(); ++k) bucket_start[k] += bucket_start[k - 1];
+    order.resize(count);
+    for (int64_t i = 0; i < count; ++i) order[bucket_start[keys[i]]++] = static_cast<uint32_t>(i);
+    results.resize(count);
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, count, 256),
+                      [&](const tbb::blocked_range<int64_t>& range) {
+                        for (int64_t j = range.begin(); j < range.end(); ++j) {
+                          const int64_t i = order[j];
+                          results[i] = TracePath(instrument, wi, incidence_seed, first + i);
+                        }
+                      });
+    // Each batch sums its paths in ray order, as if they had been traced one after another.
+    tbb::parallel_for(first_batch, last_batch, [&](int64_t b) {
+      Trace& trace = partial[b];
+      trace.detector_power.assign(detectors.size(), Rgb::Zero());
+      const int64_t begin = b * kRaysPerBatch - first;
+      const int64_t end = std::min(count, begin + kRaysPerBatch);
+      for (int64_t i = begin; i < end; ++i) {
+        const PathResult& path = results[i];
+        trace.incident += path.incident;
+        trace.segments += path.segments;
+        trace.paths_cut += path.cut;
+        if (!path.escaped) continue;
+        trace.reflected += path.power;
+        ++trace.escaped;
+        lookup.ForEachContaining(path.direction,
+                                 [&](int k) { trace.detector_power[k] += path.power; });
+      }
+    });
+  }
   // Sum in batch order: the result does not depend on which thread ran which batch.
   Trace total;
   total.detector_power.assign(detectors.size(), Rgb::Zero());
