@@ -102,6 +102,13 @@ class DetectorLookup {
 
 }  // namespace
 
+// One ray segment's Embree query, with the distances along the ray to the tile's sides (x, y)
+// and top, where the segment ends if it hits nothing.
+struct SegmentQuery {
+  RTCRayHit rayhit;
+  double t_x, t_y, t_top;
+};
+
 // The Embree device and scene of one height field (Embree 3 API).
 class EmbreeHeightField {
  public:
@@ -152,51 +159,74 @@ class EmbreeHeightField {
   double top() const { return top_; }
   double size() const { return size_; }
 
+  // Sets up the query for the segment of the ray from `origin` that stays inside the tile:
+  // Embree looks no further than the tile's side or its top.
+  void Aim(const Vec3& origin, const Vec3& direction, SegmentQuery* query) const {
+    const double inf = std::numeric_limits<double>::infinity();
+    const Vec3& o = origin;
+    query->t_x = direction.x() > 0   ? (size_ - o.x()) / direction.x()
+                 : direction.x() < 0 ? -o.x() / direction.x()
+                                     : inf;
+    query->t_y = direction.y() > 0   ? (size_ - o.y()) / direction.y()
+                 : direction.y() < 0 ? -o.y() / direction.y()
+                                     : inf;
+    query->t_top = direction.z() > 0 ? (top_ - o.z()) / direction.z() : inf;
+    RTCRay& ray = query->rayhit.ray;
+    ray.org_x = float(o.x()), ray.org_y = float(o.y()), ray.org_z = float(o.z());
+    ray.dir_x = float(direction.x()), ray.dir_y = float(direction.y());
+    ray.dir_z = float(direction.z());
+    ray.tnear = 0.0f;
+    ray.tfar = float(std::min(std::min(query->t_x, query->t_y), query->t_top));
+    ray.mask = 0xffffffffu;
+    ray.flags = 0;
+    ray.time = 0.0f;
+    query->rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  }
+
+  // Answers `count` queries whose rays are coherent (one direction, neighbouring origins):
+  // Embree traces them as packets.
+  void IntersectCoherent(SegmentQuery* queries, int count) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1M(scene_, &context, &queries[0].rayhit, static_cast<unsigned>(count),
+                   sizeof(SegmentQuery));
+  }
+
   // Follows a ray through the periodic tiling. Returns true with the hit point and the unit
   // geometric normal facing the ray; false when it escaped upward (*escaped) or was lost.
+  // `answered`, if given, is the first segment's query, aimed from *origin and answered.
   bool Intersect(Vec3* origin, const Vec3& direction, Vec3* normal, bool* escaped,
-                 int64_t* segments) const {
+                 int64_t* segments, const SegmentQuery* answered = nullptr) const {
     *escaped = false;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    const double inf = std::numeric_limits<double>::infinity();
+    SegmentQuery own;
     for (int wrap = 0; wrap < kMaxWraps; ++wrap) {
-      const Vec3& o = *origin;
-      const double t_x = direction.x() > 0   ? (size_ - o.x()) / direction.x()
-                         : direction.x() < 0 ? -o.x() / direction.x()
-                                             : inf;
-      const double t_y = direction.y() > 0   ? (size_ - o.y()) / direction.y()
-                         : direction.y() < 0 ? -o.y() / direction.y()
-                                             : inf;
-      const double t_top = direction.z() > 0 ? (top_ - o.z()) / direction.z() : inf;
-      const double t_side = std::min(t_x, t_y);
-      RTCRayHit query;
-      query.ray.org_x = float(o.x()), query.ray.org_y = float(o.y()),
-      query.ray.org_z = float(o.z());
-      query.ray.dir_x = float(direction.x()), query.ray.dir_y = float(direction.y());
-      query.ray.dir_z = float(direction.z());
-      query.ray.tnear = 0.0f;
-      query.ray.tfar = float(std::min(t_side, t_top));
-      query.ray.mask = 0xffffffffu;
-      query.ray.flags = 0;
-      query.ray.time = 0.0f;
-      query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(scene_, &context, &query);
+      const SegmentQuery* query = answered;
+      if (wrap > 0 || query == nullptr) {
+        Aim(*origin, direction, &own);
+        rtcIntersect1(scene_, &context, &own.rayhit);
+        query = &own;
+      }
       ++*segments;
-      if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-        *origin = o + double(query.ray.tfar) * direction;
-        *normal = Vec3(query.hit.Ng_x, query.hit.Ng_y, query.hit.Ng_z).normalized();
+      const RTCRayHit& result = query->rayhit;
+      const Vec3& o = *origin;
+      if (result.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+        *origin = o + double(result.ray.tfar) * direction;
+        *normal = Vec3(result.hit.Ng_x, result.hit.Ng_y, result.hit.Ng_z).normalized();
         if (normal->dot(direction) > 0) *normal = -*normal;
         return true;
       }
-      if (t_top <= t_side) {
+      const double t_side = std::min(query->t_x, query->t_y);
+      if (query->t_top <= t_side) {
         *escaped = true;
         return false;
       }
       Vec3 next = o + t_side * direction;
       if (next.z() < bottom_) return false;  // slipped through a seam: lost
-      if (t_x <= t_side) next.x() = direction.x() > 0 ? 0.0 : size_;
-      if (t_y <= t_side) next.y() = direction.y() > 0 ? 0.0 : size_;
+      if (query->t_x <= t_side) next.x() = direction.x() > 0 ? 0.0 : size_;
+      if (query->t_y <= t_side) next.y() = direction.y() > 0 ? 0.0 : size_;
       *origin = next;
     }
     return false;
@@ -229,8 +259,10 @@ std::string TracedSurfaceSample::Modelled() const {
          "the Monte Carlo standard error";
 }
 
+namespace {
+
 // What one path delivered, kept until its batch is summed in ray order.
-struct TracedSurfaceSample::PathResult {
+struct PathResult {
   Vec3 direction = Vec3::Zero();  // the escape direction
   Rgb power = Rgb::Zero();        // the throughput that escaped (0 if the path did not)
   double incident = 0;            // the source weight of the ray
@@ -238,57 +270,127 @@ struct TracedSurfaceSample::PathResult {
   bool escaped = false, cut = false;
 };
 
-TracedSurfaceSample::PathResult TracedSurfaceSample::TracePath(const Instrument& instrument,
-                                                               const Vec3& wi,
-                                                               uint64_t incidence_seed,
-                                                               int64_t ray) const {
-  PathResult result;
-  Rng rng(incidence_seed, Stream::kRayPath, static_cast<uint64_t>(ray));
+// A path between its first segment and the rest.
+struct PathState {
+  Rng rng{0};
+  Vec3 origin, direction;
+  Rgb throughput;
   double weight = 0;
-  const double u1 = rng.Uniform(), u2 = rng.Uniform();
-  const Vec3 wi_source = instrument.SourceDirection(wi, u1, u2, &weight);
-  result.incident = weight;
-  if (weight <= 0) return result;
-  const double tile = scene_->size();
-  // Separate statements: argument evaluation order is unspecified, and the output must not
-  // depend on the compiler.
-  const double x = rng.Uniform() * tile;
-  const double y = rng.Uniform() * tile;
-  Vec3 origin(x, y, scene_->top());
-  Vec3 direction = -wi_source;
-  Rgb throughput = Rgb::Constant(weight);
-  int64_t segments = 0;
-  for (int bounce = 0;; ++bounce) {
-    Vec3 normal;
-    bool escaped = false;
-    if (!scene_->Intersect(&origin, direction, &normal, &escaped, &segments)) {
-      if (escaped) {
-        result.escaped = true;
-        result.power = throughput;
-        result.direction = direction;
+};
+
+// The paths of one incidence. Path `ray` draws every number from its own stream, derived from
+// (incidence, ray): neither the thread nor the order in which paths are traced shows.
+class PathTracer {
+ public:
+  PathTracer(const EmbreeHeightField& scene, const FacetMaterial& material, int bounces,
+             const Instrument& instrument, const Vec3& wi, uint64_t incidence_seed)
+      : scene_(scene),
+        material_(material),
+        bounces_(bounces),
+        instrument_(instrument),
+        wi_(wi),
+        incidence_seed_(incidence_seed) {}
+
+  // The first numbers of path `ray`: two for its source direction, then its entry point
+  // (x, y) in units of the tile.
+  Rng StartRng(int64_t ray, Point2* source, Point2* entry) const {
+    Rng rng(incidence_seed_, Stream::kRayPath, static_cast<uint64_t>(ray));
+    // Separate statements: argument evaluation order is unspecified, and the output must not
+    // depend on the compiler.
+    source->x() = rng.Uniform();
+    source->y() = rng.Uniform();
+    entry->x() = rng.Uniform();
+    entry->y() = rng.Uniform();
+    return rng;
+  }
+
+  // Draws the source ray of path `ray`; false if the source gives it no weight.
+  bool Start(int64_t ray, PathState* state, PathResult* result) const {
+    Point2 source, entry;
+    state->rng = StartRng(ray, &source, &entry);
+    const Vec3 wi_source =
+        instrument_.SourceDirection(wi_, source.x(), source.y(), &state->weight);
+    result->incident = state->weight;
+    if (state->weight <= 0) return false;
+    state->origin = Vec3(entry.x() * scene_.size(), entry.y() * scene_.size(), scene_.top());
+    state->direction = -wi_source;
+    state->throughput = Rgb::Constant(state->weight);
+    return true;
+  }
+
+  // Follows a started path to its end; `first` is its first segment's answered query.
+  void Finish(PathState* state, const SegmentQuery* first, PathResult* result) const {
+    Vec3& origin = state->origin;
+    Vec3& direction = state->direction;
+    Rgb& throughput = state->throughput;
+    Rng& rng = state->rng;
+    int64_t segments = 0;
+    for (int bounce = 0;; ++bounce) {
+      Vec3 normal;
+      bool escaped = false;
+      if (!scene_.Intersect(&origin, direction, &normal, &escaped, &segments,
+                            bounce == 0 ? first : nullptr)) {
+        if (escaped) {
+          result->escaped = true;
+          result->power = throughput;
+          result->direction = direction;
+        }
+        break;
       }
-      break;
+      if (bounce == bounces_) {
+        result->cut = true;
+        break;
+      }
+      const Frame facet = Frame::FromZ(normal);
+      const double s0 = rng.Uniform();
+      const double s1 = rng.Uniform();
+      const Vec3 wo_local = material_.Scatter(facet.ToLocal(-direction), s0, s1, &throughput);
+      if (wo_local.z() <= 0) break;
+      direction = facet.FromLocal(wo_local).normalized();
+      origin += 1e-4 * normal;  // step off the facet so the next ray does not hit it again
+      if (bounce + 1 >= kRouletteAfter) {
+        const double survival = std::min(1.0, throughput.maxCoeff() / state->weight);
+        if (survival <= 0 || rng.Uniform() >= survival) break;
+        throughput /= survival;
+      }
     }
-    if (bounce == spec_.bounces) {
-      result.cut = true;
-      break;
+    result->segments = static_cast<int32_t>(segments);
+  }
+
+  // Traces the paths ray_begin + order[j] for j in [0, count), a group small enough that their
+  // first segments, which start close together in one direction, go to Embree as one stream.
+  void TraceGroup(int64_t ray_begin, const uint32_t* order, int count,
+                  PathResult* results) const {
+    PathState states[kGroup];
+    SegmentQuery queries[kGroup];
+    int live[kGroup];
+    int started = 0;
+    for (int j = 0; j < count; ++j) {
+      PathResult& result = results[order[j]];
+      result = PathResult();
+      if (!Start(ray_begin + order[j], &states[j], &result)) continue;
+      scene_.Aim(states[j].origin, states[j].direction, &queries[started]);
+      live[started++] = j;
     }
-    const Frame facet = Frame::FromZ(normal);
-    const double s0 = rng.Uniform();
-    const double s1 = rng.Uniform();
-    const Vec3 wo_local = material_.Scatter(facet.ToLocal(-direction), s0, s1, &throughput);
-    if (wo_local.z() <= 0) break;
-    direction = facet.FromLocal(wo_local).normalized();
-    origin += 1e-4 * normal;  // step off the facet so the next ray does not hit it again
-    if (bounce + 1 >= kRouletteAfter) {
-      const double survival = std::min(1.0, throughput.maxCoeff() / weight);
-      if (survival <= 0 || rng.Uniform() >= survival) break;
-      throughput /= survival;
+    if (started > 0) scene_.IntersectCoherent(queries, started);
+    for (int m = 0; m < started; ++m) {
+      const int j = live[m];
+      Finish(&states[j], &queries[m], &results[order[j]]);
     }
   }
-  result.segments = static_cast<int32_t>(segments);
-  return result;
-}
+
+  static constexpr int kGroup = 64;
+
+ private:
+  const EmbreeHeightField& scene_;
+  const FacetMaterial& material_;
+  int bounces_;
+  const Instrument& instrument_;
+  Vec3 wi_;
+  uint64_t incidence_seed_;
+};
+
+}  // namespace
 
 TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
     const Instrument& instrument, const Vec3& wi, const std::vector<Vec3>& detectors, uint64_t seed,
@@ -296,9 +398,8 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
   const DetectorLookup lookup(detectors, instrument.DetectorCosHalfAngle());
   const int64_t batches = (rays + kRaysPerBatch - 1) / kRaysPerBatch;
   std::vector<Trace> partial(batches);
-  // Every path has its own random stream, derived from (incidence, ray index): neither the
-  // thread nor the order in which paths are traced shows in the result.
   const uint64_t incidence_seed = Rng(seed, Stream::kRayBatch, incidence_index).NextU64();
+  const PathTracer tracer(*scene_, material_, spec_.bounces, instrument, wi, incidence_seed);
   // The paths are traced in sweeps of whole batches, each sweep in the order of its entry
   // points along a Morton curve over the tile: neighbouring paths then walk the same part of
   // the BVH, which stays in cache. In random order nearly every query missed the cache.
@@ -309,18 +410,15 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
     const int64_t first = first_batch * kRaysPerBatch;
     const int64_t count = std::min(rays, last_batch * kRaysPerBatch) - first;
     keys.resize(count);
-    tbb::parallel_for(int64_t{0}, count, int64_t{4096}, [&](int64_t begin) {
-      const int64_t end = std::min(count, begin + 4096);
-      for (int64_t i = begin; i < end; ++i) {
-        Rng rng(incidence_seed, Stream::kRayPath, static_cast<uint64_t>(first + i));
-        rng.Uniform();  // the source direction's two numbers
-        rng.Uniform();
-        const double x = rng.Uniform();
-        const double y = rng.Uniform();
-        keys[i] = MortonKey(static_cast<uint32_t>(x * kSortCells),
-                            static_cast<uint32_t>(y * kSortCells));
-      }
-    });
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, count, 4096),
+                      [&](const tbb::blocked_range<int64_t>& range) {
+                        for (int64_t i = range.begin(); i < range.end(); ++i) {
+                          Point2 source, entry;
+                          tracer.StartRng(first + i, &source, &entry);
+                          keys[i] = MortonKey(static_cast<uint32_t>(entry.x() * kSortCells),
+                                              static_cast<uint32_t>(entry.y() * kSortCells));
+                        }
+                      });
     // Counting sort by key: stable, so paths of one cell keep their index order.
     bucket_start.assign(size_t(kSortCells) * kSortCells + 1, 0);
     for (uint32_t key : keys) ++bucket_start[key + 1];
@@ -328,11 +426,17 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
     order.resize(count);
     for (int64_t i = 0; i < count; ++i) order[bucket_start[keys[i]]++] = static_cast<uint32_t>(i);
     results.resize(count);
-    tbb::parallel_for(tbb::blocked_range<int64_t>(0, count, 256),
+    // Fixed groups of the sorted order, whatever the thread count: which paths share a stream
+    // does not depend on the threads either.
+    const int64_t groups = (count + PathTracer::kGroup - 1) / PathTracer::kGroup;
+    tbb::parallel_for(tbb::blocked_range<int64_t>(0, groups, 4),
                       [&](const tbb::blocked_range<int64_t>& range) {
-                        for (int64_t j = range.begin(); j < range.end(); ++j) {
-                          const int64_t i = order[j];
-                          results[i] = TracePath(instrument, wi, incidence_seed, first + i);
+                        for (int64_t g = range.begin(); g < range.end(); ++g) {
+                          const int64_t j = g * PathTracer::kGroup;
+                          tracer.TraceGroup(
+                              first, order.data() + j,
+                              static_cast<int>(std::min<int64_t>(PathTracer::kGroup, count - j)),
+                              results.data());
                         }
                       });
     // Each batch sums its paths in ray order, as if they had been traced one after another.

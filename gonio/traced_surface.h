@@ -45,10 +45,6 @@ class TracedSurfaceSample : public GonioSample {
   const HeightField& field() const { return field_; }
 
  private:
-  struct PathResult;
-  PathResult TracePath(const Instrument& instrument, const Vec3& wi, uint64_t incidence_seed,
-                       int64_t ray) const;
-
   HeightField field_;
   FacetMaterial material_;
   SurfaceSpec spec_;
