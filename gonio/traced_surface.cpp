@@ -38,6 +38,26 @@ constexpr int kMaxWraps = 256;
 // Russian roulette starts after this many bounces (Arvo & Kirk 1990).
 constexpr int kRouletteAfter = 3;
 
+// atan2(y, x) within about 2e-8 radians, without libm: the octant is folded onto [0, 1] and
+// arctan t / t there is the polynomial of Abramowitz & Stegun (1964), 4.4.49.
+double FastAtan2(double y, double x) {
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double big = std::max(ax, ay), small = std::min(ax, ay);
+  if (big == 0) return 0;
+  const double t = small / big, t2 = t * t;
+  double angle =
+      t * (1 + t2 * (-0.3333314528 +
+                     t2 * (0.1999355085 +
+                           t2 * (-0.1420889944 +
+                                 t2 * (0.1065626393 +
+                                       t2 * (-0.0752896400 +
+                                             t2 * (0.0429096138 +
+                                                   t2 * (-0.0161657367 + t2 * 0.0028662257))))))));
+  if (ay > ax) angle = 0.5 * kPi - angle;
+  if (x < 0) angle = kPi - angle;
+  return y < 0 ? -angle : angle;
+}
+
 // Detector cones indexed by 1° cells of (theta, phi) so that an escaping ray is compared with
 // the few detectors that can contain it, not with all of them. The cells' lists are stored one
 // after another (offsets into one array), so a look-up touches two cache lines, not a
@@ -75,9 +95,14 @@ class DetectorLookup {
     }
   }
 
+  // The cell of w comes from angles accurate to about 1e-7 degrees (FastAtan2). One that far
+  // off can land only in a neighbouring cell, and every detector is listed one cell beyond its
+  // cone in theta and in phi (the constructor's margins), so the same detectors are found as
+  // with exact angles; the dot product decides.
   template <typename Visit>
   void ForEachContaining(const Vec3& w, Visit&& visit) const {
-    const int cell = CellTheta(Theta(w)) * kPhiCells + CellPhi(Phi(w));
+    const double theta = FastAtan2(std::sqrt(w.x() * w.x() + w.y() * w.y()), w.z());
+    const int cell = CellTheta(theta) * kPhiCells + CellPhi(FastAtan2(w.y(), w.x()));
     for (uint32_t m = offsets_[cell]; m < offsets_[cell + 1]; ++m) {
       const int k = members_[m];
       if (w.dot(detectors_[k]) >= cos_half_angle_) visit(k);
@@ -357,8 +382,9 @@ class PathTracer {
     result->segments = static_cast<int32_t>(segments);
   }
 
-  // Traces the paths ray_begin + order[j] for j in [0, count), a group small enough that their
-  // first segments, which start close together in one direction, go to Embree as one stream.
+  // Traces the paths ray_begin + order[j] for j in [0, count) into results[j], a group small
+  // enough that their first segments, which start close together in one direction, go to
+  // Embree as one stream.
   void TraceGroup(int64_t ray_begin, const uint32_t* order, int count,
                   PathResult* results) const {
     PathState states[kGroup];
@@ -366,7 +392,7 @@ class PathTracer {
     int live[kGroup];
     int started = 0;
     for (int j = 0; j < count; ++j) {
-      PathResult& result = results[order[j]];
+      PathResult& result = results[j];
       result = PathResult();
       if (!Start(ray_begin + order[j], &states[j], &result)) continue;
       scene_.Aim(states[j].origin, states[j].direction, &queries[started]);
@@ -375,7 +401,7 @@ class PathTracer {
     if (started > 0) scene_.IntersectCoherent(queries, started);
     for (int m = 0; m < started; ++m) {
       const int j = live[m];
-      Finish(&states[j], &queries[m], &results[order[j]]);
+      Finish(&states[j], &queries[m], &results[j]);
     }
   }
 
@@ -404,7 +430,7 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
   // points along a Morton curve over the tile: neighbouring paths then walk the same part of
   // the BVH, which stays in cache. In random order nearly every query missed the cache.
   std::vector<PathResult> results;
-  std::vector<uint32_t> keys, order, bucket_start;
+  std::vector<uint32_t> keys, order, position, bucket_start;  // position[order[j]] = j
   for (int64_t first_batch = 0; first_batch < batches; first_batch += kBatchesPerSweep) {
     const int64_t last_batch = std::min(batches, first_batch + kBatchesPerSweep);
     const int64_t first = first_batch * kRaysPerBatch;
@@ -424,7 +450,11 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
     for (uint32_t key : keys) ++bucket_start[key + 1];
     for (size_t k = 1; k < bucket_start.size(); ++k) bucket_start[k] += bucket_start[k - 1];
     order.resize(count);
-    for (int64_t i = 0; i < count; ++i) order[bucket_start[keys[i]]++] = static_cast<uint32_t>(i);
+    position.resize(count);
+    for (int64_t i = 0; i < count; ++i) {
+      position[i] = bucket_start[keys[i]]++;
+      order[position[i]] = static_cast<uint32_t>(i);
+    }
     results.resize(count);
     // Fixed groups of the sorted order, whatever the thread count: which paths share a stream
     // does not depend on the threads either.
@@ -436,7 +466,7 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
                           tracer.TraceGroup(
                               first, order.data() + j,
                               static_cast<int>(std::min<int64_t>(PathTracer::kGroup, count - j)),
-                              results.data());
+                              results.data() + j);
                         }
                       });
     // Each batch sums its paths in ray order, as if they had been traced one after another.
@@ -446,7 +476,7 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
       const int64_t begin = b * kRaysPerBatch - first;
       const int64_t end = std::min(count, begin + kRaysPerBatch);
       for (int64_t i = begin; i < end; ++i) {
-        const PathResult& path = results[i];
+        const PathResult& path = results[position[i]];
         trace.incident += path.incident;
         trace.segments += path.segments;
         trace.paths_cut += path.cut;
