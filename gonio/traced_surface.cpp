@@ -10,6 +10,7 @@
 
 #include "core/errors.h"
 #include "core/text.h"
+#include "gonio/detector_lookup.h"
 #include "gonio/rng.h"
 #include "gonio/sampling.h"
 
@@ -37,93 +38,6 @@ uint32_t MortonKey(uint32_t x, uint32_t y) {
 constexpr int kMaxWraps = 256;
 // Russian roulette starts after this many bounces (Arvo & Kirk 1990).
 constexpr int kRouletteAfter = 3;
-
-// atan2(y, x) within about 2e-8 radians, without libm: the octant is folded onto [0, 1] and
-// arctan t / t there is the polynomial of Abramowitz & Stegun (1964), 4.4.49.
-double FastAtan2(double y, double x) {
-  const double ax = std::abs(x), ay = std::abs(y);
-  const double big = std::max(ax, ay), small = std::min(ax, ay);
-  if (big == 0) return 0;
-  const double t = small / big, t2 = t * t;
-  double angle =
-      t * (1 + t2 * (-0.3333314528 +
-                     t2 * (0.1999355085 +
-                           t2 * (-0.1420889944 +
-                                 t2 * (0.1065626393 +
-                                       t2 * (-0.0752896400 +
-                                             t2 * (0.0429096138 +
-                                                   t2 * (-0.0161657367 + t2 * 0.0028662257))))))));
-  if (ay > ax) angle = 0.5 * kPi - angle;
-  if (x < 0) angle = kPi - angle;
-  return y < 0 ? -angle : angle;
-}
-
-// Detector cones indexed by 1° cells of (theta, phi) so that an escaping ray is compared with
-// the few detectors that can contain it, not with all of them. The cells' lists are stored one
-// after another (offsets into one array), so a look-up touches two cache lines, not a
-// separately allocated list per cell.
-class DetectorLookup {
- public:
-  DetectorLookup(const std::vector<Vec3>& detectors, double cos_half_angle)
-      : detectors_(detectors), cos_half_angle_(cos_half_angle) {
-    std::vector<std::vector<int>> cells(kThetaCells * kPhiCells);
-    const double radius = std::acos(cos_half_angle);
-    for (size_t k = 0; k < detectors.size(); ++k) {
-      const double theta = Theta(detectors[k]), phi = Phi(detectors[k]);
-      const int theta_low = std::max(0, CellTheta(theta - radius) - 1);
-      const int theta_high = std::min(kThetaCells - 1, CellTheta(theta + radius) + 1);
-      const double sin_low = std::sin(std::max(theta - radius, 0.0));
-      const bool all_phi = theta - radius <= DegToRad(1) || radius / sin_low >= kPi;
-      const double phi_radius =
-          all_phi ? kPi : std::asin(std::min(1.0, std::sin(radius) / sin_low));
-      const int phi_span = static_cast<int>(std::ceil(RadToDeg(phi_radius))) + 1;
-      const int first = all_phi ? 0 : CellPhi(phi) - phi_span;
-      const int last = all_phi ? kPhiCells - 1 : CellPhi(phi) + phi_span;
-      for (int t = theta_low; t <= theta_high; ++t) {
-        for (int p = first; p <= last; ++p) {
-          cells[t * kPhiCells + ((p % kPhiCells) + kPhiCells) % kPhiCells].push_back(int(k));
-        }
-      }
-    }
-    offsets_.reserve(cells.size() + 1);
-    offsets_.push_back(0);
-    for (auto& cell : cells) {  // a detector may have been added twice through phi wrap
-      std::sort(cell.begin(), cell.end());
-      cell.erase(std::unique(cell.begin(), cell.end()), cell.end());
-      members_.insert(members_.end(), cell.begin(), cell.end());
-      offsets_.push_back(static_cast<uint32_t>(members_.size()));
-    }
-  }
-
-  // The cell of w comes from angles accurate to about 1e-7 degrees (FastAtan2). One that far
-  // off can land only in a neighbouring cell, and every detector is listed one cell beyond its
-  // cone in theta and in phi (the constructor's margins), so the same detectors are found as
-  // with exact angles; the dot product decides.
-  template <typename Visit>
-  void ForEachContaining(const Vec3& w, Visit&& visit) const {
-    const double theta = FastAtan2(std::sqrt(w.x() * w.x() + w.y() * w.y()), w.z());
-    const int cell = CellTheta(theta) * kPhiCells + CellPhi(FastAtan2(w.y(), w.x()));
-    for (uint32_t m = offsets_[cell]; m < offsets_[cell + 1]; ++m) {
-      const int k = members_[m];
-      if (w.dot(detectors_[k]) >= cos_half_angle_) visit(k);
-    }
-  }
-
- private:
-  static constexpr int kThetaCells = 90, kPhiCells = 360;
-  static int CellTheta(double theta) {
-    return std::clamp(static_cast<int>(std::floor(RadToDeg(theta))), 0, kThetaCells - 1);
-  }
-  static int CellPhi(double phi) {
-    const int cell = static_cast<int>(std::floor(RadToDeg(phi)));
-    return ((cell % kPhiCells) + kPhiCells) % kPhiCells;
-  }
-
-  const std::vector<Vec3>& detectors_;
-  double cos_half_angle_;
-  std::vector<uint32_t> offsets_;  // cell c holds members_[offsets_[c] .. offsets_[c + 1])
-  std::vector<int> members_;
-};
 
 }  // namespace
 
@@ -333,8 +247,7 @@ class PathTracer {
   bool Start(int64_t ray, PathState* state, PathResult* result) const {
     Point2 source, entry;
     state->rng = StartRng(ray, &source, &entry);
-    const Vec3 wi_source =
-        instrument_.SourceDirection(wi_, source.x(), source.y(), &state->weight);
+    const Vec3 wi_source = instrument_.SourceDirection(wi_, source.x(), source.y(), &state->weight);
     result->incident = state->weight;
     if (state->weight <= 0) return false;
     state->origin = Vec3(entry.x() * scene_.size(), entry.y() * scene_.size(), scene_.top());
@@ -385,8 +298,7 @@ class PathTracer {
   // Traces the paths ray_begin + order[j] for j in [0, count) into results[j], a group small
   // enough that their first segments, which start close together in one direction, go to
   // Embree as one stream.
-  void TraceGroup(int64_t ray_begin, const uint32_t* order, int count,
-                  PathResult* results) const {
+  void TraceGroup(int64_t ray_begin, const uint32_t* order, int count, PathResult* results) const {
     PathState states[kGroup];
     SegmentQuery queries[kGroup];
     int live[kGroup];
@@ -459,16 +371,15 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
     // Fixed groups of the sorted order, whatever the thread count: which paths share a stream
     // does not depend on the threads either.
     const int64_t groups = (count + PathTracer::kGroup - 1) / PathTracer::kGroup;
-    tbb::parallel_for(tbb::blocked_range<int64_t>(0, groups, 4),
-                      [&](const tbb::blocked_range<int64_t>& range) {
-                        for (int64_t g = range.begin(); g < range.end(); ++g) {
-                          const int64_t j = g * PathTracer::kGroup;
-                          tracer.TraceGroup(
-                              first, order.data() + j,
+    tbb::parallel_for(
+        tbb::blocked_range<int64_t>(0, groups, 4), [&](const tbb::blocked_range<int64_t>& range) {
+          for (int64_t g = range.begin(); g < range.end(); ++g) {
+            const int64_t j = g * PathTracer::kGroup;
+            tracer.TraceGroup(first, order.data() + j,
                               static_cast<int>(std::min<int64_t>(PathTracer::kGroup, count - j)),
                               results.data() + j);
-                        }
-                      });
+          }
+        });
     // Each batch sums its paths in ray order, as if they had been traced one after another.
     tbb::parallel_for(first_batch, last_batch, [&](int64_t b) {
       Trace& trace = partial[b];
