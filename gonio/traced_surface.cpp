@@ -20,6 +20,8 @@ namespace {
 constexpr int kRaysPerBatch = 4096;
 // Batches traced together, sorted by where their paths enter the tile (TraceIncidence).
 constexpr int kBatchesPerSweep = 64;
+// How many paths ahead the batch sums ask for a path's result.
+constexpr int64_t kPrefetchAhead = 16;
 // The sort's grid over the tile: kSortCells² cells along a Morton curve.
 constexpr uint32_t kSortCells = 128;
 
@@ -387,6 +389,8 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
       const int64_t begin = b * kRaysPerBatch - first;
       const int64_t end = std::min(count, begin + kRaysPerBatch);
       for (int64_t i = begin; i < end; ++i) {
+        // The results lie in trace order, so these reads jump: ask for one well ahead.
+        if (i + kPrefetchAhead < end) __builtin_prefetch(&results[position[i + kPrefetchAhead]]);
         const PathResult& path = results[position[i]];
         trace.incident += path.incident;
         trace.segments += path.segments;
