@@ -18,12 +18,13 @@ namespace brdf::gonio {
 namespace {
 
 constexpr int kRaysPerBatch = 4096;
-// Batches traced together, sorted by where their paths enter the tile (TraceIncidence).
+// Batches traced together, sorted by where their paths enter the tile (TraceIncidence): 2^18
+// paths, whose results (64 bytes each) are kept until their batches are summed.
 constexpr int kBatchesPerSweep = 64;
 // How many paths ahead the batch sums ask for a path's result.
 constexpr int64_t kPrefetchAhead = 16;
 // The sort's grid over the tile: kSortCells² cells along a Morton curve.
-constexpr uint32_t kSortCells = 128;
+constexpr uint32_t kSortCells = 256;
 
 // Interleaves the bits of x and y (each below 2^16): the Z-order index of cell (x, y).
 uint32_t MortonKey(uint32_t x, uint32_t y) {
@@ -35,6 +36,7 @@ uint32_t MortonKey(uint32_t x, uint32_t y) {
   };
   return spread(x) | (spread(y) << 1);
 }
+
 // Lateral wraps before a path is abandoned: only a ray almost parallel to the mean surface
 // crosses this many tiles, and its weight is lost either way.
 constexpr int kMaxWraps = 256;
@@ -319,7 +321,8 @@ class PathTracer {
     }
   }
 
-  static constexpr int kGroup = 64;
+  // One Embree packet on an AVX-512 machine, two on AVX2.
+  static constexpr int kGroup = 16;
 
  private:
   const EmbreeHeightField& scene_;
