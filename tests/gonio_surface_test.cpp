@@ -271,7 +271,7 @@ TEST(GonioSurfaceTest, DetectorLookupFindsEveryConeContainingTheDirection) {
     const DetectorLookup lookup(detectors, cos_half_angle);
     std::vector<Vec3> directions;
     Rng rng(11);
-    for (int k = 0; k < 100000; ++k)
+    for (int k = 0; k < 30000; ++k)
       directions.push_back(SampleCosineHemisphere(Point2(rng.Uniform(), rng.Uniform())));
     for (int theta = 0; theta < 90; ++theta) {
       for (int phi = 0; phi < 360; phi += 3)
