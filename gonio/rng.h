@@ -20,6 +20,7 @@ enum class Stream : uint64_t {
   kReferenceNoise = 4,
   kRayBatch = 5,
   kHeightField = 6,
+  kRayPath = 7,  // one traced path: (incidence seed, ray index)
 };
 
 // The shared SplitMix64 (core/splitmix64.h), seeded by (seed, purpose, index): any 64-bit seed

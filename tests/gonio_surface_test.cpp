@@ -3,14 +3,17 @@
 // rough conductor within Monte Carlo error, determinism across thread counts.
 #include <ImfRgbaFile.h>
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <complex>
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "gonio/detector_lookup.h"
 #include "gonio/measure.h"
 #include "gonio/model_sample.h"
+#include "gonio/rng.h"
 #include "gonio/surface_sample.h"
 #include "gonio/traced_surface.h"
 #include "gonio_test_util.h"
@@ -235,6 +238,94 @@ TEST(GonioSurfaceTest, TracedRunIsIdenticalWithOneAndTwoThreads) {
       brdf::testing::RunBrdf("measure --sample surface:" + bad + " --out " + dir.File("x.csv"));
   EXPECT_EQ(result.exit_status, 2);
   EXPECT_NE(result.err.find("heightfield.kind"), std::string::npos) << result.err;
+}
+
+// The tracer's arctangent (no libm) agrees with std::atan2 in every octant, on the axes and
+// at the origin.
+TEST(GonioSurfaceTest, FastAtan2MatchesTheLibrary) {
+  Rng rng(7);
+  double worst = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const double y = 2 * rng.Uniform() - 1, x = 2 * rng.Uniform() - 1;
+    worst = std::max(worst, std::abs(FastAtan2(y, x) - std::atan2(y, x)));
+  }
+  EXPECT_LT(worst, 3e-8);
+  for (const auto& [y, x] : std::vector<std::pair<double, double>>{
+           {0, 1}, {1, 0}, {0, -1}, {-1, 0}, {1, 1}, {-1, -1}, {1e-300, 1}, {1, -1e-300}}) {
+    EXPECT_NEAR(FastAtan2(y, x), std::atan2(y, x), 3e-8) << y << " " << x;
+  }
+  EXPECT_EQ(FastAtan2(0, 0), 0);
+}
+
+// The cell look-up that bins escaping paths finds exactly the cones a test against every
+// detector finds: on the 5° hemisphere (with detectors around the pole and across phi = 0),
+// for random directions and for directions on the cells' own boundaries (whole degrees).
+TEST(GonioSurfaceTest, DetectorLookupFindsEveryConeContainingTheDirection) {
+  std::vector<Vec3> detectors;
+  for (const Detector& d : MakeSchedule("hemisphere").incidences[6].detectors)
+    detectors.push_back(d.wo);
+  detectors.push_back(SphericalDirection(DegToRad(0.3), DegToRad(200)));
+  detectors.push_back(SphericalDirection(DegToRad(88.9), DegToRad(359.7)));
+  for (const double solid_angle : {0.001, 0.01, 0.05}) {
+    const double cos_half_angle = ConeCosHalfAngle(solid_angle);
+    const DetectorLookup lookup(detectors, cos_half_angle);
+    std::vector<Vec3> directions;
+    Rng rng(11);
+    for (int k = 0; k < 30000; ++k)
+      directions.push_back(SampleCosineHemisphere(Point2(rng.Uniform(), rng.Uniform())));
+    for (int theta = 0; theta < 90; ++theta) {
+      for (int phi = 0; phi < 360; phi += 3)
+        directions.push_back(SphericalDirection(DegToRad(theta), DegToRad(phi)));
+    }
+    int64_t found_total = 0;
+    for (const Vec3& w : directions) {
+      std::vector<int> found, expected;
+      lookup.ForEachContaining(w, [&](int k) { found.push_back(k); });
+      for (size_t k = 0; k < detectors.size(); ++k) {
+        if (w.dot(detectors[k]) >= cos_half_angle) expected.push_back(int(k));
+      }
+      std::sort(found.begin(), found.end());
+      ASSERT_EQ(found, expected) << solid_angle << " at " << w.transpose();
+      found_total += int64_t(found.size());
+    }
+    EXPECT_GT(found_total, int64_t(directions.size()) / 4);  // the test did look at cones
+  }
+}
+
+// More rays than one sorted sweep of the tracer holds: the same trace, to the bit, on one
+// thread and on two (which paths share an Embree stream does not depend on the threads).
+TEST(GonioSurfaceTest, TraceOfManySweepsIsIdenticalWithOneAndTwoThreads) {
+  SurfaceSpec spec;
+  spec.heightfield.kind = "gaussian";
+  spec.heightfield.rms_slope = 0.5;
+  spec.heightfield.resolution = 32;
+  spec.base = "lambert:rho_d=0.9";
+  const Instrument instrument = IdealInstrument();
+  const auto sample = MakeSurfaceSample(spec, instrument);
+  const auto* traced = dynamic_cast<const TracedSurfaceSample*>(sample.get());
+  ASSERT_NE(traced, nullptr);
+  const Vec3 wi = SphericalDirection(DegToRad(50), 0);
+  const std::vector<Vec3> detectors = {MirrorDirection(wi), Vec3(0, 0, 1)};
+  const int64_t rays = 300000;  // 74 batches of 4096
+  const auto trace = [&](int threads) {
+    tbb::task_arena arena(threads);
+    return arena.execute(
+        [&] { return traced->TraceIncidence(instrument, wi, detectors, 9, 3, rays); });
+  };
+  const TracedSurfaceSample::Trace one = trace(1), two = trace(2);
+  EXPECT_GT(one.segments, rays);
+  EXPECT_EQ(one.segments, two.segments);
+  EXPECT_EQ(one.escaped, two.escaped);
+  EXPECT_EQ(one.paths_cut, two.paths_cut);
+  EXPECT_EQ(one.incident, two.incident);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(one.reflected[c], two.reflected[c]);
+  for (size_t k = 0; k < detectors.size(); ++k) {
+    EXPECT_GT(one.detector_power[k][0], 0);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(one.detector_power[k][c], two.detector_power[k][c]);
+      EXPECT_EQ(one.detector_power_standard_error[k][c], two.detector_power_standard_error[k][c]);
+    }
+  }
 }
 
 // A height map from an EXR file: v-grooves written by the test and read back as kind "file"
