@@ -68,25 +68,40 @@ void ProblemBlocks(const ModelFitter<ModelType>& fitter, Variables* at,
   }
 }
 
+// A residual block's Jacobian: one row per residual, the parameter blocks side by side.
+using BlockJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Evaluates one residual block at `blocks`: its residuals and its Jacobian (rows x n).
+inline void EvaluateBlock(const ceres::CostFunction* cost, const std::vector<double*>& blocks,
+                          const std::vector<int>& sizes, int n, Eigen::VectorXd* residuals,
+                          BlockJacobian* jacobian) {
+  const int rows = cost->num_residuals();
+  residuals->resize(rows);
+  std::vector<std::vector<double>> jacobians(blocks.size());
+  std::vector<double*> jacobian_pointers(blocks.size());
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    jacobians[b].resize(static_cast<size_t>(rows) * sizes[b]);
+    jacobian_pointers[b] = jacobians[b].data();
+  }
+  cost->Evaluate(blocks.data(), residuals->data(), jacobian_pointers.data());
+  jacobian->resize(rows, n);
+  int column = 0;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    jacobian->middleCols(column, sizes[b]) =
+        Eigen::Map<const BlockJacobian>(jacobians[b].data(), rows, sizes[b]);
+    column += sizes[b];
+  }
+}
+
 // Evaluates one residual block and calls visit(r, jacobian_row, residual) for its rows.
 template <typename Visit>
 void VisitBlockRows(const ceres::CostFunction* cost, const std::vector<double*>& blocks,
                     const std::vector<int>& sizes, int n, Visit&& visit) {
-  const int rows = cost->num_residuals();
-  std::vector<double> residuals(rows);
-  std::vector<std::vector<double>> jacobians(blocks.size());
-  std::vector<double*> jacobian_pointers(blocks.size());
-  for (size_t b = 0; b < blocks.size(); ++b) {
-    jacobians[b].resize(rows * sizes[b]);
-    jacobian_pointers[b] = jacobians[b].data();
-  }
-  cost->Evaluate(blocks.data(), residuals.data(), jacobian_pointers.data());
-  Eigen::VectorXd row(n);
-  for (int r = 0; r < rows; ++r) {
-    int column = 0;
-    for (size_t b = 0; b < blocks.size(); ++b) {
-      for (int k = 0; k < sizes[b]; ++k) row[column++] = jacobians[b][r * sizes[b] + k];
-    }
+  Eigen::VectorXd residuals;
+  BlockJacobian jacobian;
+  EvaluateBlock(cost, blocks, sizes, n, &residuals, &jacobian);
+  for (int r = 0; r < jacobian.rows(); ++r) {
+    const Eigen::VectorXd row = jacobian.row(r).transpose();
     visit(r, row, residuals[r]);
   }
 }
@@ -155,14 +170,14 @@ inline bool SandwichCovariance(const Eigen::MatrixXd& full_a, const Eigen::Matri
   return true;
 }
 
-// Sums over every residual row of `problem` at `v`: add(partial, row_index, jacobian_row,
-// residual) for each row (rows numbered in the problem's order: sample k's channel c is row
-// 3 k + c), one parallel pass over the residual blocks (each evaluating its batches in parallel),
-// the blocks' partial sums combined in a fixed order, so the result does not depend on the
-// thread count.
+// Sums over the residual blocks of `problem` at `v`: add(partial, first_row, residuals,
+// jacobian) for each block (rows numbered in the problem's order: sample k's channel c is row
+// 3 k + c), in one parallel pass (each block evaluating its batches in parallel), the blocks'
+// partial sums combined in a fixed order, so the result does not depend on the thread count.
+// Summing a block at a time lets J^T J be one matrix product instead of a rank update a row.
 template <typename ModelType, typename Sums, typename Add, typename Combine>
-Sums SumOverRows(const ModelFitter<ModelType>& fitter, ceres::Problem* problem, const Variables& v,
-                 const Sums& zero, Add&& add, Combine&& combine) {
+Sums SumOverBlocks(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                   const Variables& v, const Sums& zero, Add&& add, Combine&& combine) {
   Variables at = v;
   std::vector<double*> blocks;
   std::vector<int> sizes;
@@ -179,11 +194,12 @@ Sums SumOverRows(const ModelFitter<ModelType>& fitter, ceres::Problem* problem, 
   return DeterministicReduce(
       static_cast<int64_t>(residual_blocks.size()), 1, zero,
       [&](int64_t begin, int64_t end, Sums partial) {
+        Eigen::VectorXd residuals;
+        BlockJacobian jacobian;
         for (int64_t index = begin; index < end; ++index) {
-          VisitBlockRows(problem->GetCostFunctionForResidualBlock(residual_blocks[index]), blocks,
-                         sizes, n, [&](int r, const Eigen::VectorXd& row, double residual) {
-                           add(partial, first_row[index] + r, row, residual);
-                         });
+          EvaluateBlock(problem->GetCostFunctionForResidualBlock(residual_blocks[index]), blocks,
+                        sizes, n, &residuals, &jacobian);
+          add(partial, first_row[index], residuals, jacobian);
         }
         return partial;
       },
@@ -203,13 +219,18 @@ void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
   };
   const int n = fitter.FreeVariables();
   const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
-  const Sums sums = SumOverRows(
+  const Sums sums = SumOverBlocks(
       fitter, problem, v, Sums{zero, zero},
-      [&](Sums& partial, int64_t row_index, const Eigen::VectorXd& row, double residual) {
-        const double e =
-            expected_squared != nullptr ? (*expected_squared)[row_index] : residual * residual;
-        partial.a.template selfadjointView<Eigen::Lower>().rankUpdate(row);
-        partial.b.template selfadjointView<Eigen::Lower>().rankUpdate(row, e);
+      [&](Sums& partial, int64_t first_row, const Eigen::VectorXd& residuals,
+          const BlockJacobian& jacobian) {
+        const Eigen::VectorXd e = expected_squared != nullptr
+                                      ? Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
+                                            expected_squared->data() + first_row, residuals.size()))
+                                      : Eigen::VectorXd(residuals.array().square());
+        // sqrt(e) J: e >= 0, a square or the expectation of one.
+        const BlockJacobian weighted = e.cwiseSqrt().asDiagonal() * jacobian;
+        partial.a.template selfadjointView<Eigen::Lower>().rankUpdate(jacobian.transpose());
+        partial.b.template selfadjointView<Eigen::Lower>().rankUpdate(weighted.transpose());
       },
       [](Sums x, const Sums& y) {
         x.a += y.a;

@@ -4,7 +4,7 @@
 // Ceres' dense solvers store the whole Jacobian, rows x variables (3.3 M x 7 doubles, 184 MB,
 // for a MERL table) plus its scratch copies: more than the samples themselves. Every one of our
 // problems has at most seven variables, so the normal equations J^T J (7 x 7) and J^T r are all a
-// Gauss-Newton step needs, and they are sums over the rows (SumOverRows, covariance.h). This is
+// Gauss-Newton step needs, and they are sums over the rows (SumOverBlocks, covariance.h). This is
 // Levenberg-Marquardt on those sums, with Ceres' own step control (trust region radius mu,
 // (J^T J + diag(J^T J) / mu) delta = -J^T r, the radius grown by 1 / max(1/3, 1 - (2 rho - 1)^3)
 // on success and shrunk by a doubling factor on failure; Madsen, Nielsen & Tingleff 2004, §3.2)
@@ -110,12 +110,13 @@ Normal Linearize(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
                  const Variables& v) {
   const int n = fitter.FreeVariables();
   Normal zero{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n), 0.0};
-  Normal sums = SumOverRows(
+  Normal sums = SumOverBlocks(
       fitter, problem, v, zero,
-      [](Normal& partial, int64_t, const Eigen::VectorXd& row, double residual) {
-        partial.a.selfadjointView<Eigen::Lower>().rankUpdate(row);
-        partial.g += residual * row;
-        partial.cost += 0.5 * residual * residual;
+      [](Normal& partial, int64_t, const Eigen::VectorXd& residuals,
+         const BlockJacobian& jacobian) {
+        partial.a.selfadjointView<Eigen::Lower>().rankUpdate(jacobian.transpose());
+        partial.g.noalias() += jacobian.transpose() * residuals;
+        partial.cost += 0.5 * residuals.squaredNorm();
       },
       [](Normal x, const Normal& y) {
         x.a += y.a;
