@@ -22,6 +22,7 @@
 #include "hdr/exposure.h"
 #include "hdr/image_files.h"
 #include "hdr/pipeline.h"
+#include "hdr/simd.h"
 #include "hdr/tone_map.h"
 #include "render/sphere.h"
 
@@ -137,31 +138,59 @@ BENCHMARK(BM_Stage_SrgbEncode8)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
 
-void BM_Pipeline_Total(benchmark::State& state) {
+// The whole pipeline on the 1080p frame; `avx2` false runs the scalar (SSE2) paths of
+// hdr/simd.h, the same bytes, for a same-run comparison.
+void RunPipeline(benchmark::State& state, const ToneOptions& options, bool avx2) {
+  // The frame is read and resized before the timed loop, not in its first iteration.
+  const Image& frame = Frame1080();
+  const bool was = SetHdrAvx2Enabled(avx2);
+  // The pipeline reads its input and writes only the 8-bit result (and the bloom's small
+  // levels): no copy of the frame is needed.
+  for (auto _ : state) benchmark::DoNotOptimize(RunTonePipeline(frame, options));
+  SetHdrAvx2Enabled(was);
+}
+
+ToneOptions PipelineBloomOptions() {
   ToneOptions options;
   options.bloom = kPipelineBloom;
   options.bloom_sigma = kBloomSigma;
-  // The pipeline reads its input and writes only the 8-bit result (and the bloom's small
-  // levels): no copy of the frame is needed.
-  for (auto _ : state) benchmark::DoNotOptimize(RunTonePipeline(Frame1080(), options));
+  return options;
+}
+
+void BM_Pipeline_Total(benchmark::State& state) {
+  RunPipeline(state, PipelineBloomOptions(), true);
 }
 BENCHMARK(BM_Pipeline_Total)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
-// The same without bloom: what `brdf tonemap` does unless asked for --bloom.
-void BM_Pipeline_NoBloom(benchmark::State& state) {
-  const ToneOptions options;
-  for (auto _ : state) benchmark::DoNotOptimize(RunTonePipeline(Frame1080(), options));
+void BM_Pipeline_Total_Scalar(benchmark::State& state) {
+  RunPipeline(state, PipelineBloomOptions(), false);
 }
+BENCHMARK(BM_Pipeline_Total_Scalar)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+// The same without bloom: what `brdf tonemap` does unless asked for --bloom.
+void BM_Pipeline_NoBloom(benchmark::State& state) { RunPipeline(state, ToneOptions(), true); }
 BENCHMARK(BM_Pipeline_NoBloom)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+void BM_Pipeline_NoBloom_Scalar(benchmark::State& state) {
+  RunPipeline(state, ToneOptions(), false);
+}
+BENCHMARK(BM_Pipeline_NoBloom_Scalar)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
 
 void BM_OpenCV_TonemapReinhard(benchmark::State& state) {
   const cv::Ptr<cv::TonemapReinhard> tonemap = cv::createTonemapReinhard();
+  const cv::Mat& frame = Frame1080Bgr();  // made before the timed loop
   cv::Mat out;
   for (auto _ : state) {
-    tonemap->process(Frame1080Bgr(), out);
+    tonemap->process(frame, out);
     benchmark::DoNotOptimize(out.data);
   }
 }

@@ -8,7 +8,10 @@ namespace brdf {
 
 Image::Image(int width, int height, float alpha)
     : width(width), height(height), rgba(int64_t{width} * height * kChannels, 0.0f) {
-  for (int64_t i = 0; i < pixel_count(); ++i) rgba[i * kChannels + 3] = alpha;
+  // The vector is zero already: a (positive) zero alpha needs no second pass.
+  if (alpha != 0.0f || std::signbit(alpha)) {
+    for (int64_t i = 0; i < pixel_count(); ++i) rgba[i * kChannels + 3] = alpha;
+  }
 }
 
 int64_t ReplaceNonFinite(Image* image) {
