@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <vector>
 
 #include "core/atomic_file.h"
@@ -62,36 +63,32 @@ void AppendChunk(const char type[4], const std::string& data, std::string* out) 
   AppendBigEndian(static_cast<uint32_t>(crc), out);
 }
 
-// Deflate's bit order: least significant bit first, into whole bytes.
+// Deflate's bit order: least significant bit first, into whole bytes. Each Put stores eight
+// bytes at once and moves on by the whole bytes it filled, so the buffer needs eight bytes to
+// spare past the end.
 class BitWriter {
  public:
-  explicit BitWriter(std::string* out) : out_(out) {}
-  // The low `count` bits of `bits` (count <= 32).
+  explicit BitWriter(uint8_t* out) : begin_(out), out_(out) {}
+  // The low `count` bits of `bits`; at most 56 bits in one call.
   void Put(uint64_t bits, int count) {
     buffer_ |= bits << filled_;
     filled_ += count;
-    if (filled_ >= 32) {
-      char word[4];
-      for (int k = 0; k < 4; ++k) word[k] = static_cast<char>(buffer_ >> (8 * k));
-      out_->append(word, 4);
-      buffer_ >>= 32;
-      filled_ -= 32;
-    }
+    std::memcpy(out_, &buffer_, sizeof(buffer_));
+    out_ += filled_ >> 3;
+    buffer_ = (filled_ & ~7) == 64 ? 0 : buffer_ >> (filled_ & ~7);
+    filled_ &= 7;
   }
-  // Pads with zero bits to a byte boundary and writes what is left.
+  // Pads with zero bits to a byte boundary.
   void Flush() {
-    while (filled_ > 0) {
-      out_->push_back(static_cast<char>(buffer_));
-      buffer_ >>= 8;
-      filled_ = std::max(0, filled_ - 8);
-    }
-    buffer_ = 0;
+    if (filled_ > 0) Put(0, 8 - filled_);
   }
+  size_t bytes() const { return static_cast<size_t>(out_ - begin_); }
 
  private:
-  std::string* out_;
+  uint8_t* begin_;
+  uint8_t* out_;
   uint64_t buffer_ = 0;
-  int filled_ = 0;
+  int filled_ = 0;  // bits in buffer_ not yet counted in out_, fewer than 8 between calls
 };
 
 // Code lengths of a Huffman code for `frequency` (0 = unused symbol), none longer than
@@ -254,15 +251,17 @@ void DeflateLiterals(const uint8_t* data, size_t size, bool final, BitWriter* wr
     writer->Put(length_codes[run.symbol], length_lengths[run.symbol]);
     if (run.extra_bits > 0) writer->Put(run.extra, run.extra_bits);
   }
-  // The literals: a code and its length in one table entry, two literals per Put (2 x 15 bits).
+  // The literals: a code and its length in one table entry, three literals per Put
+  // (3 x 15 bits).
   std::vector<uint32_t> table(256);
   for (int b = 0; b < 256; ++b) table[b] = codes[b] | static_cast<uint32_t>(lengths[b]) << 16;
   size_t i = 0;
-  for (; i + 2 <= size; i += 2) {
-    const uint32_t a = table[data[i]], b = table[data[i + 1]];
-    const int length_a = static_cast<int>(a >> 16);
-    writer->Put((a & 0xffff) | uint64_t{b & 0xffff} << length_a,
-                length_a + static_cast<int>(b >> 16));
+  for (; i + 3 <= size; i += 3) {
+    const uint32_t a = table[data[i]], b = table[data[i + 1]], c = table[data[i + 2]];
+    const int length_a = static_cast<int>(a >> 16), length_b = static_cast<int>(b >> 16);
+    writer->Put((a & 0xffff) | uint64_t{b & 0xffff} << length_a |
+                    uint64_t{c & 0xffff} << (length_a + length_b),
+                length_a + length_b + static_cast<int>(c >> 16));
   }
   for (; i < size; ++i)
     writer->Put(table[data[i]] & 0xffff, static_cast<int>(table[data[i]] >> 16));
@@ -289,17 +288,20 @@ Strip DeflateStrip(const Image8& image, int y0, int y1, bool last) {
   strip.length = static_cast<uLong>(filtered.size());
   strip.adler =
       adler32(adler32(0L, Z_NULL, 0), filtered.data(), static_cast<uInt>(filtered.size()));
-  strip.deflated.reserve(filtered.size() + filtered.size() / 8 + 256);
-  BitWriter writer(&strip.deflated);
+  // Room for the worst case: 15 bits a byte, the block header, the stored block, and the
+  // eight bytes the writer stores past its end.
+  std::unique_ptr<uint8_t[]> deflated(new uint8_t[filtered.size() * 2 + 1024]);
+  BitWriter writer(deflated.get());
   DeflateLiterals(filtered.data(), filtered.size(), last, &writer);
   if (!last) {
     // An empty stored block, as Z_SYNC_FLUSH ends a strip: the next starts on a byte.
     writer.Put(0, 3);
     writer.Flush();
-    strip.deflated.append("\x00\x00\xff\xff", 4);
+    writer.Put(0xffff0000u, 32);  // LEN 0, NLEN = ~LEN
   } else {
     writer.Flush();
   }
+  strip.deflated.assign(reinterpret_cast<const char*>(deflated.get()), writer.bytes());
   return strip;
 }
 
