@@ -142,7 +142,7 @@ TEST(HdrAvx2, StatisticsAreTheScalarBits) {
   }
 }
 
-TEST(HdrAvx2, BrightPassAndDualFilterAreTheScalarBits) {
+TEST(HdrAvx2, BrightPassAndBlursAreTheScalarBits) {
   for (const auto& [width, height] : {std::pair{97, 61}, std::pair{200, 9}, std::pair{11, 7}}) {
     const Image scene = EdgeScene(width, height, false);
     const auto [available, bright] = BothPaths([&] { return BrightPass(scene, 1.0, 0.7).rgba; });
@@ -150,6 +150,11 @@ TEST(HdrAvx2, BrightPassAndDualFilterAreTheScalarBits) {
     EXPECT_TRUE(SameBits(bright.first, bright.second)) << width << "x" << height;
     const auto down = BothPaths([&] { return BrightPassDown(scene, 1.0, 0.7).rgba; }).second;
     EXPECT_TRUE(SameBits(down.first, down.second)) << width << "x" << height;
+    for (double sigma : {0.8, 3.0, 13.0}) {
+      const auto blurred = BothPaths([&] { return GaussianBlur(scene, sigma).rgba; }).second;
+      EXPECT_TRUE(SameBits(blurred.first, blurred.second))
+          << width << "x" << height << ", Gaussian sigma " << sigma;
+    }
     for (int levels : {1, 2, 4}) {
       const auto blurred = BothPaths([&] { return DualFilterBlur(scene, levels).rgba; }).second;
       EXPECT_TRUE(SameBits(blurred.first, blurred.second))
