@@ -130,7 +130,12 @@ BRDF_HDR_AVX2 inline __m256 Log8(__m256 x) {
 // AddRow's loop eight pixels at a time: pixels x0..x0+3 are folded into the lanes, then
 // x0+4..x0+7, each group as AddFour does it (the library's log for a whole group of four with
 // an argument that is not a normal float). Returns the first pixel not folded.
-BRDF_HDR_AVX2 int AddRowAvx2(const float* row, int width, float delta, LaneSums* sums) {
+//
+// With kExpose, the row is made on the way from `in` (and `add`) as ExposeRow does it, and
+// stored to `keep` when that is not null; otherwise `in` is the row and the rest unused.
+template <bool kExpose>
+BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, float strength,
+                             float* keep, int width, float delta, LaneSums* sums) {
   __m256d log_sum, lit_log_sum;
   std::memcpy(&log_sum, &sums->log_sum, sizeof(log_sum));
   std::memcpy(&lit_log_sum, &sums->lit_log_sum, sizeof(lit_log_sum));
@@ -149,12 +154,29 @@ BRDF_HDR_AVX2 int AddRowAvx2(const float* row, int width, float delta, LaneSums*
   const __m256 largest = _mm256_set1_ps(std::numeric_limits<float>::max());
   const __m256 smallest = _mm256_set1_ps(std::numeric_limits<float>::min());
   int x0 = 0;
+  const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
   for (; x0 + 8 <= width; x0 += 8) {
-    const float* p = row + int64_t{x0} * Image::kChannels;
+    const int64_t at = int64_t{x0} * Image::kChannels;
     __m256 quad[4], channel[4];
     for (int k = 0; k < 4; ++k) {
-      quad[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4 * k)),
-                                     _mm_loadu_ps(p + 16 + 4 * k), 1);
+      quad[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(in + at + 4 * k)),
+                                     _mm_loadu_ps(in + at + 16 + 4 * k), 1);
+    }
+    if constexpr (kExpose) {
+      for (int k = 0; k < 4; ++k) {
+        __m256 exposed = _mm256_mul_ps(quad[k], scale8);
+        if (add != nullptr) {
+          const __m256 bloom =
+              _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(add + at + 4 * k)),
+                                   _mm_loadu_ps(add + at + 16 + 4 * k), 1);
+          exposed = _mm256_add_ps(exposed, _mm256_mul_ps(strength8, bloom));
+        }
+        quad[k] = _mm256_blend_ps(exposed, quad[k], 0x88);  // alpha kept
+        if (keep != nullptr) {
+          _mm_storeu_ps(keep + at + 4 * k, _mm256_castps256_ps128(quad[k]));
+          _mm_storeu_ps(keep + at + 16 + 4 * k, _mm256_extractf128_ps(quad[k], 1));
+        }
+      }
     }
     TransposeQuads(quad, channel);
     // PixelLuminance's operations in its order, then std::max(0, L) (NaN gives 0).
@@ -205,18 +227,59 @@ BRDF_HDR_AVX2 int AddRowAvx2(const float* row, int width, float delta, LaneSums*
   std::memcpy(&sums->black, &black4, sizeof(black4));
   return x0;
 }
+
+// ExposeRow's arithmetic on the floats [0, 8n) of a row; returns 8n.
+BRDF_HDR_AVX2 int64_t ExposeRowAvx2(const float* in, const float* add, int64_t floats, float scale,
+                                    float strength, float* out) {
+  const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
+  int64_t i = 0;
+  for (; i + 8 <= floats; i += 8) {
+    const __m256 pixels = _mm256_loadu_ps(in + i);
+    __m256 exposed = _mm256_mul_ps(pixels, scale8);
+    if (add != nullptr) {
+      exposed = _mm256_add_ps(exposed, _mm256_mul_ps(strength8, _mm256_loadu_ps(add + i)));
+    }
+    _mm256_storeu_ps(out + i, _mm256_blend_ps(exposed, pixels, 0x88));  // alpha kept
+  }
+  return i;
+}
 #endif
+
+// ExposeRow on the pixels [x0, width).
+void ExposeRowFrom(const float* in, const float* add, int x0, int width, float scale,
+                   float strength, float* out) {
+  int64_t i = int64_t{x0} * Image::kChannels;
+  const int64_t floats = int64_t{width} * Image::kChannels;
+#if BRDF_HDR_HAS_AVX2_PATHS
+  if (HdrAvx2Enabled()) {
+    i += ExposeRowAvx2(in + i, add == nullptr ? nullptr : add + i, floats - i, scale, strength,
+                       out + i);
+  }
+#endif
+  if (add == nullptr) {
+    for (; i < floats; i += Image::kChannels) {
+      out[i] = in[i] * scale;
+      out[i + 1] = in[i + 1] * scale;
+      out[i + 2] = in[i + 2] * scale;
+      out[i + 3] = in[i + 3];
+    }
+    return;
+  }
+  for (; i < floats; i += Image::kChannels) {
+    out[i] = in[i] * scale + strength * add[i];
+    out[i + 1] = in[i + 1] * scale + strength * add[i + 1];
+    out[i + 2] = in[i + 2] * scale + strength * add[i + 2];
+    out[i + 3] = in[i + 3];
+  }
+}
 
 // Folds one row into `sums`, four pixels at a time, the sums in double. The sums are kept in
 // a local while the row is read: a vector of floats may alias the row, so through the pointer
 // they would be stored and reloaded for every four pixels.
-void AddRow(const float* row, int width, float delta, LaneSums* sums) {
+// Starts at pixel `x0`, a multiple of 4 (the lane of pixel x is x mod 4).
+void AddRow(const float* row, int x0, int width, float delta, LaneSums* sums) {
   LaneSums local = *sums;
   const Float4 zero{0, 0, 0, 0};
-  int x0 = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled()) x0 = AddRowAvx2(row, width, delta, &local);
-#endif
   for (; x0 + 4 <= width; x0 += 4) {
     const float* p = row + int64_t{x0} * Image::kChannels;
     const Float4 r{p[0], p[4], p[8], p[12]}, g{p[1], p[5], p[9], p[13]},
@@ -249,13 +312,11 @@ LogSum Join(const LaneSums& lanes) {
   return sum;
 }
 
-}  // namespace
-
-SceneLuminance MeasureSceneLuminanceByRow(
-    int width, int height, double delta,
-    const std::function<const float*(int y, float* scratch)>& row) {
-  // A fixed summation order: the exposure, and so every output byte, must not depend on the
-  // thread count.
+// The statistics of `height` rows, `fold(y, scratch, delta, lanes)` folding row y into the
+// lanes (`scratch` has room for two RGBA rows). A fixed summation order: the exposure, and so
+// every output byte, must not depend on the thread count.
+template <typename Fold>
+SceneLuminance MeasureRows(int width, int height, double delta, const Fold& fold) {
   const int64_t rows_per_chunk = std::max<int64_t>(1, kPixelGrain / std::max(1, width));
   const float delta_f = static_cast<float>(delta);
   const LogSum total = DeterministicReduce(
@@ -264,7 +325,7 @@ SceneLuminance MeasureSceneLuminanceByRow(
         std::vector<float> scratch(2 * int64_t{width} * Image::kChannels);
         LaneSums lanes;
         for (int64_t y = begin; y < end; ++y) {
-          AddRow(row(static_cast<int>(y), scratch.data()), width, delta_f, &lanes);
+          fold(static_cast<int>(y), scratch.data(), delta_f, &lanes);
         }
         const LogSum chunk = Join(lanes);
         sum.log_sum += chunk.log_sum;
@@ -290,6 +351,50 @@ SceneLuminance MeasureSceneLuminanceByRow(
   const int64_t lit = total.pixels - total.black;
   scene.log_average_lit = lit > 0 ? std::exp(total.lit_log_sum / lit) : 0.0;
   return scene;
+}
+
+}  // namespace
+
+SceneLuminance MeasureSceneLuminanceByRow(
+    int width, int height, double delta,
+    const std::function<const float*(int y, float* scratch)>& row) {
+  return MeasureRows(
+      width, height, delta, [&](int y, float* scratch, float delta_f, LaneSums* lanes) {
+        const float* pixels = row(y, scratch);
+        int x0 = 0;
+#if BRDF_HDR_HAS_AVX2_PATHS
+        if (HdrAvx2Enabled()) {
+          x0 = AddRowAvx2<false>(pixels, nullptr, 1.0f, 0.0f, nullptr, width, delta_f, lanes);
+        }
+#endif
+        AddRow(pixels, x0, width, delta_f, lanes);
+      });
+}
+
+SceneLuminance MeasureExposedLuminanceByRow(
+    int width, int height, double delta, float scale, float strength,
+    const std::function<ExposedRowSource(int y, float* scratch)>& row) {
+  return MeasureRows(
+      width, height, delta, [&](int y, float* scratch, float delta_f, LaneSums* lanes) {
+        const ExposedRowSource source = row(y, scratch);
+        // The exposed row is made where it is kept, or in the scratch row's second half.
+        float* exposed =
+            source.keep != nullptr ? source.keep : scratch + int64_t{width} * Image::kChannels;
+        int x0 = 0;
+#if BRDF_HDR_HAS_AVX2_PATHS
+        if (HdrAvx2Enabled()) {
+          x0 = AddRowAvx2<true>(source.in, source.add, scale, strength, source.keep, width, delta_f,
+                                lanes);
+        }
+#endif
+        ExposeRowFrom(source.in, source.add, x0, width, scale, strength, exposed);
+        AddRow(exposed, x0, width, delta_f, lanes);
+      });
+}
+
+void ExposeRow(const float* in, const float* add, int width, float scale, float strength,
+               float* out) {
+  ExposeRowFrom(in, add, 0, width, scale, strength, out);
 }
 
 SceneLuminance MeasureSceneLuminance(const Image& image, double delta) {

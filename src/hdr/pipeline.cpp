@@ -117,39 +117,34 @@ namespace {
 constexpr int kRowsPerTask = 8;
 
 #if BRDF_HDR_HAS_AVX2_PATHS
-// ExposedRows::Row's arithmetic on the floats [0, 8n) of a row: out = in * scale
-// (+ strength * add, when `add` is given) on RGB, alpha copied; returns 8n.
-BRDF_HDR_AVX2 int64_t ExposeRowAvx2(const float* in, const float* add, int64_t floats, float scale,
-                                    float strength, float* out) {
-  const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
-  int64_t i = 0;
-  for (; i + 8 <= floats; i += 8) {
-    const __m256 pixels = _mm256_loadu_ps(in + i);
-    __m256 exposed = _mm256_mul_ps(pixels, scale8);
-    if (add != nullptr) {
-      exposed = _mm256_add_ps(exposed, _mm256_mul_ps(strength8, _mm256_loadu_ps(add + i)));
-    }
-    _mm256_storeu_ps(out + i, _mm256_blend_ps(exposed, pixels, 0x88));  // alpha kept
-  }
-  return i;
-}
-
 // PixelToneMap<kOperator> on the pixels [0, 8n) of an RGBA row, eight at a time with its
 // operations in its order; writes the planes red[x], green[x], blue[x]; returns 8n. Not for
-// the exponential operator (std::exp has no exact vector twin).
-template <ToneOperator kOperator>
-BRDF_HDR_AVX2 int ToneMapRowAvx2(const float* row, int width, float key_scale, float white,
-                                 float* red, float* green, float* blue) {
+// the exponential operator (std::exp has no exact vector twin). The row is `row`, or with
+// kExpose the row ExposeRow(row, add, scale, strength) would make, made here on the way.
+template <ToneOperator kOperator, bool kExpose>
+BRDF_HDR_AVX2 int ToneMapRowAvx2(const float* row, const float* add, float scale, float strength,
+                                 int width, float key_scale, float white, float* red, float* green,
+                                 float* blue) {
   static_assert(kOperator != ToneOperator::kExposure, "std::exp has no exact vector twin");
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
   const __m256 key8 = _mm256_set1_ps(key_scale), white_squared = _mm256_set1_ps(white * white);
+  const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
   int x = 0;
   for (; x + 8 <= width; x += 8) {
-    const float* p = row + int64_t{x} * Image::kChannels;
+    const int64_t at = int64_t{x} * Image::kChannels;
     __m256 quad[4];  // pixels k and k + 4 in the halves of quad[k]
     for (int k = 0; k < 4; ++k) {
-      quad[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4 * k)),
-                                     _mm_loadu_ps(p + 16 + 4 * k), 1);
+      quad[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(row + at + 4 * k)),
+                                     _mm_loadu_ps(row + at + 16 + 4 * k), 1);
+      if constexpr (kExpose) {  // ExposeRow's arithmetic (alpha is not needed here)
+        quad[k] = _mm256_mul_ps(quad[k], scale8);
+        if (add != nullptr) {
+          const __m256 bloom =
+              _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(add + at + 4 * k)),
+                                   _mm_loadu_ps(add + at + 16 + 4 * k), 1);
+          quad[k] = _mm256_add_ps(quad[k], _mm256_mul_ps(strength8, bloom));
+        }
+      }
     }
     const __m256 t0 = _mm256_unpacklo_ps(quad[0], quad[1]),
                  t1 = _mm256_unpackhi_ps(quad[0], quad[1]);
@@ -201,38 +196,25 @@ class ExposedRows {
         bloom_is_half_(bloom_is_half),
         strength_(static_cast<float>(strength)) {}
 
+  float scale() const { return scale_; }
+  float strength() const { return strength_; }
+  // Row y of the input and of the full-size bloom (null without bloom), the bloom's row made
+  // in `bloom_scratch` (width * 4 floats) when it is kept at half size.
+  ExposedRowSource Sources(int y, float* bloom_scratch) const {
+    ExposedRowSource source;
+    source.in = image_.pixel(0, y);
+    if (bloom_ != nullptr && bloom_is_half_) {
+      DualFilterUpRow(*bloom_, image_.width, y, bloom_scratch);
+      source.add = bloom_scratch;
+    } else if (bloom_ != nullptr) {
+      source.add = bloom_->pixel(0, y);
+    }
+    return source;
+  }
   // Row y into `scratch` (width * 4 floats); `bloom_scratch` has as much room again.
   const float* Row(int y, float* scratch, float* bloom_scratch) const {
-    const int64_t floats = int64_t{image_.width} * Image::kChannels;
-    const float* in = image_.pixel(0, y);
-    // Locals, not members, in the loops: a store to a float row may alias a float member.
-    const float scale = scale_, strength = strength_;
-    const bool avx2 = HdrAvx2Enabled();
-    if (bloom_ == nullptr) {
-      int64_t i = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
-      if (avx2) i = ExposeRowAvx2(in, nullptr, floats, scale, strength, scratch);
-#endif
-      for (; i < floats; i += Image::kChannels) {
-        scratch[i] = in[i] * scale;
-        scratch[i + 1] = in[i + 1] * scale;
-        scratch[i + 2] = in[i + 2] * scale;
-        scratch[i + 3] = in[i + 3];
-      }
-      return scratch;
-    }
-    const float* add = bloom_is_half_ ? bloom_scratch : bloom_->pixel(0, y);
-    if (bloom_is_half_) DualFilterUpRow(*bloom_, image_.width, y, bloom_scratch);
-    int64_t i = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
-    if (avx2) i = ExposeRowAvx2(in, add, floats, scale, strength, scratch);
-#endif
-    for (; i < floats; i += Image::kChannels) {
-      scratch[i] = in[i] * scale + strength * add[i];
-      scratch[i + 1] = in[i + 1] * scale + strength * add[i + 1];
-      scratch[i + 2] = in[i + 2] * scale + strength * add[i + 2];
-      scratch[i + 3] = in[i + 3];
-    }
+    const ExposedRowSource source = Sources(y, bloom_scratch);
+    ExposeRow(source.in, source.add, image_.width, scale_, strength_, scratch);
     return scratch;
   }
 
@@ -296,11 +278,12 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   std::unique_ptr<float[]> kept;
   if (reinhard) {
     if (bloom_is_half) kept.reset(new float[image.pixel_count() * Image::kChannels]);
-    mapped =
-        MeasureSceneLuminanceByRow(width, image.height, options.delta, [&](int y, float* scratch) {
-          float* target = kept ? kept.get() + y * row_floats : scratch;
-          return rows.Row(y, target, scratch + row_floats);
-        });
+    mapped = MeasureExposedLuminanceByRow(width, image.height, options.delta, rows.scale(),
+                                          rows.strength(), [&](int y, float* scratch) {
+                                            ExposedRowSource source = rows.Sources(y, scratch);
+                                            if (kept) source.keep = kept.get() + y * row_floats;
+                                            return source;
+                                          });
   }
   result.mapping = PlanToneMapping(options.tone_operator, mapped, options.key, options.white);
 
@@ -310,7 +293,7 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   display.height = image.height;
   display.rgb.resize(image.pixel_count() * 3);
   const int tasks = (image.height + kRowsPerTask - 1) / kRowsPerTask;
-  const bool avx2 = HdrAvx2Enabled();
+  [[maybe_unused]] const bool avx2 = HdrAvx2Enabled();
   ForToneOperator(result.mapping, [&](const auto& map) {
     constexpr ToneOperator kOperator = std::decay_t<decltype(map)>::kToneOperator;
     tbb::parallel_for(0, tasks, [&](int task) {
@@ -319,8 +302,6 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
       std::vector<float> mapped(int64_t{width} * 3);
       const int y1 = std::min(image.height, (task + 1) * kRowsPerTask);
       for (int y = task * kRowsPerTask; y < y1; ++y) {
-        const float* row = kept ? kept.get() + y * row_floats
-                                : rows.Row(y, scratch.data(), scratch.data() + row_floats);
         uint8_t* out = display.rgb.data() + int64_t{y} * width * 3;
 #if BRDF_HDR_HAS_AVX2_PATHS
         if constexpr (kOperator != ToneOperator::kExposure) {
@@ -328,8 +309,25 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
             float* const red = mapped.data();
             float* const green = red + width;
             float* const blue = green + width;
-            int x = ToneMapRowAvx2<kOperator>(row, width, map.key_scale(), map.white(), red, green,
-                                              blue);
+            // The kept row, or the exposure (and bloom) made on the way from the input.
+            const float* row = nullptr;
+            int x = 0;
+            if (kept) {
+              row = kept.get() + y * row_floats;
+              x = ToneMapRowAvx2<kOperator, false>(row, nullptr, 1.0f, 0.0f, width, map.key_scale(),
+                                                   map.white(), red, green, blue);
+            } else {
+              const ExposedRowSource source = rows.Sources(y, scratch.data() + row_floats);
+              x = ToneMapRowAvx2<kOperator, true>(source.in, source.add, rows.scale(),
+                                                  rows.strength(), width, map.key_scale(),
+                                                  map.white(), red, green, blue);
+              if (x < width) {  // the last pixels through the scalar path
+                const int64_t at = int64_t{x} * Image::kChannels;
+                ExposeRow(source.in + at, source.add == nullptr ? nullptr : source.add + at,
+                          width - x, rows.scale(), rows.strength(), scratch.data() + at);
+              }
+              row = scratch.data();
+            }
             for (; x < width; ++x) {
               float rgb[3];
               map(row + int64_t{x} * Image::kChannels, rgb);
@@ -340,6 +338,8 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
           }
         }
 #endif
+        const float* row = kept ? kept.get() + y * row_floats
+                                : rows.Row(y, scratch.data(), scratch.data() + row_floats);
         for (int x = 0; x < width; ++x) {
           map(row + int64_t{x} * Image::kChannels, mapped.data() + 3 * x);
         }
