@@ -5,7 +5,9 @@
 // Run through bench/hdr_bench.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_reduce.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -187,6 +189,28 @@ BENCHMARK(BM_Pipeline_NoBloom_Scalar)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
+
+// One read of the 1080p float frame on all threads (a sum no compiler can drop): what one
+// memory pass of the pipeline costs at least, in the same run.
+void BM_FramePass(benchmark::State& state) {
+  const Image& frame = Frame1080();
+  const int64_t floats = static_cast<int64_t>(frame.rgba.size());
+  for (auto _ : state) {
+    const float sum = tbb::parallel_reduce(
+        tbb::blocked_range<int64_t>(0, floats, 1 << 16), 0.0f,
+        [&](const tbb::blocked_range<int64_t>& range, float partial) {
+          float lanes[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+          for (int64_t i = range.begin(); i + 8 <= range.end(); i += 8) {
+            for (int k = 0; k < 8; ++k) lanes[k] += frame.rgba[i + k];
+          }
+          for (float lane : lanes) partial += lane;
+          return partial;
+        },
+        [](float a, float b) { return a + b; });
+    benchmark::DoNotOptimize(sum);
+  }
+}
+BENCHMARK(BM_FramePass)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 void BM_OpenCV_TonemapReinhard(benchmark::State& state) {
   const cv::Ptr<cv::TonemapReinhard> tonemap = cv::createTonemapReinhard();
