@@ -295,7 +295,7 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   const int tasks = (image.height + kRowsPerTask - 1) / kRowsPerTask;
   [[maybe_unused]] const bool avx2 = HdrAvx2Enabled();
   ForToneOperator(result.mapping, [&](const auto& map) {
-    constexpr ToneOperator kOperator = std::decay_t<decltype(map)>::kToneOperator;
+    [[maybe_unused]] constexpr ToneOperator kOperator = std::decay_t<decltype(map)>::kToneOperator;
     tbb::parallel_for(0, tasks, [&](int task) {
       std::vector<float> scratch(2 * row_floats);
       // One row tone mapped: RGB, or (AVX2) three planes.
