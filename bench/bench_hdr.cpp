@@ -5,6 +5,10 @@
 // Run through bench/hdr_bench.
 #include <benchmark/benchmark.h>
 #include <malloc.h>
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_reduce.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,6 +19,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/photo.hpp>
 #include <string>
+#include <vector>
 
 #include "core/angles.h"
 #include "hdr/bloom.h"
@@ -22,6 +27,7 @@
 #include "hdr/exposure.h"
 #include "hdr/image_files.h"
 #include "hdr/pipeline.h"
+#include "hdr/simd.h"
 #include "hdr/tone_map.h"
 #include "render/sphere.h"
 
@@ -137,31 +143,81 @@ BENCHMARK(BM_Stage_SrgbEncode8)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
 
-void BM_Pipeline_Total(benchmark::State& state) {
+// The whole pipeline on the 1080p frame; `avx2` false runs the scalar (SSE2) paths of
+// hdr/simd.h, the same bytes, for a same-run comparison.
+void RunPipeline(benchmark::State& state, const ToneOptions& options, bool avx2) {
+  // The frame is read and resized before the timed loop, not in its first iteration.
+  const Image& frame = Frame1080();
+  const bool was = SetHdrAvx2Enabled(avx2);
+  // The pipeline reads its input and writes only the 8-bit result (and the bloom's small
+  // levels): no copy of the frame is needed.
+  for (auto _ : state) benchmark::DoNotOptimize(RunTonePipeline(frame, options));
+  SetHdrAvx2Enabled(was);
+}
+
+ToneOptions PipelineBloomOptions() {
   ToneOptions options;
   options.bloom = kPipelineBloom;
   options.bloom_sigma = kBloomSigma;
-  // The pipeline reads its input and writes only the 8-bit result (and the bloom's small
-  // levels): no copy of the frame is needed.
-  for (auto _ : state) benchmark::DoNotOptimize(RunTonePipeline(Frame1080(), options));
+  return options;
+}
+
+void BM_Pipeline_Total(benchmark::State& state) {
+  RunPipeline(state, PipelineBloomOptions(), true);
 }
 BENCHMARK(BM_Pipeline_Total)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
-// The same without bloom: what `brdf tonemap` does unless asked for --bloom.
-void BM_Pipeline_NoBloom(benchmark::State& state) {
-  const ToneOptions options;
-  for (auto _ : state) benchmark::DoNotOptimize(RunTonePipeline(Frame1080(), options));
+void BM_Pipeline_Total_Scalar(benchmark::State& state) {
+  RunPipeline(state, PipelineBloomOptions(), false);
 }
+BENCHMARK(BM_Pipeline_Total_Scalar)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+// The same without bloom: what `brdf tonemap` does unless asked for --bloom.
+void BM_Pipeline_NoBloom(benchmark::State& state) { RunPipeline(state, ToneOptions(), true); }
 BENCHMARK(BM_Pipeline_NoBloom)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
 
+void BM_Pipeline_NoBloom_Scalar(benchmark::State& state) {
+  RunPipeline(state, ToneOptions(), false);
+}
+BENCHMARK(BM_Pipeline_NoBloom_Scalar)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+// One read of the 1080p float frame on all threads (a sum no compiler can drop): what one
+// memory pass of the pipeline costs at least, in the same run.
+void BM_FramePass(benchmark::State& state) {
+  const Image& frame = Frame1080();
+  const int64_t floats = static_cast<int64_t>(frame.rgba.size());
+  for (auto _ : state) {
+    const float sum = tbb::parallel_reduce(
+        tbb::blocked_range<int64_t>(0, floats, 1 << 16), 0.0f,
+        [&](const tbb::blocked_range<int64_t>& range, float partial) {
+          float lanes[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+          for (int64_t i = range.begin(); i + 8 <= range.end(); i += 8) {
+            for (int k = 0; k < 8; ++k) lanes[k] += frame.rgba[i + k];
+          }
+          for (float lane : lanes) partial += lane;
+          return partial;
+        },
+        [](float a, float b) { return a + b; });
+    benchmark::DoNotOptimize(sum);
+  }
+}
+BENCHMARK(BM_FramePass)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+
 void BM_OpenCV_TonemapReinhard(benchmark::State& state) {
   const cv::Ptr<cv::TonemapReinhard> tonemap = cv::createTonemapReinhard();
+  const cv::Mat& frame = Frame1080Bgr();  // made before the timed loop
   cv::Mat out;
   for (auto _ : state) {
-    tonemap->process(Frame1080Bgr(), out);
+    tonemap->process(frame, out);
     benchmark::DoNotOptimize(out.data);
   }
 }
@@ -234,6 +290,54 @@ BENCHMARK(BM_Blur)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
+
+// --- PNG ---------------------------------------------------------------------------------
+
+// The 1080p frame tone mapped as `brdf tonemap` does it by default.
+const Image8& Display1080() {
+  static const Image8 display = RunTonePipeline(Frame1080(), ToneOptions()).display;
+  return display;
+}
+
+// Our whole PNG encoder (Sub filter, Huffman coder, checksums) on one thread, against zlib's
+// Huffman-only deflate alone (what the encoder called before) on the same filtered bytes.
+void BM_Png_Ours_OneThread(benchmark::State& state) {
+  const Image8& display = Display1080();
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  size_t bytes = 0;
+  for (auto _ : state) bytes = EncodePng(display, "bench.png").size();
+  state.counters["bytes"] = static_cast<double>(bytes);
+}
+BENCHMARK(BM_Png_Ours_OneThread)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Png_ZlibHuffmanOnly_OneThread(benchmark::State& state) {
+  const Image8& display = Display1080();
+  const int64_t row_bytes = int64_t{display.width} * 3;
+  std::vector<uint8_t> filtered(static_cast<size_t>((row_bytes + 1) * display.height));
+  for (int y = 0; y < display.height; ++y) {
+    const uint8_t* in = display.rgb.data() + y * row_bytes;
+    uint8_t* out = filtered.data() + (row_bytes + 1) * y;
+    out[0] = 1;  // Sub
+    for (int64_t i = 0; i < row_bytes; ++i) {
+      out[1 + i] = static_cast<uint8_t>(i < 3 ? in[i] : in[i] - in[i - 3]);
+    }
+  }
+  size_t bytes = 0;
+  for (auto _ : state) {
+    z_stream stream{};
+    deflateInit2(&stream, 1, Z_DEFLATED, -15, 8, Z_HUFFMAN_ONLY);
+    std::vector<uint8_t> out(deflateBound(&stream, filtered.size()) + 16);
+    stream.next_in = filtered.data();
+    stream.avail_in = static_cast<uInt>(filtered.size());
+    stream.next_out = out.data();
+    stream.avail_out = static_cast<uInt>(out.size());
+    deflate(&stream, Z_FINISH);
+    bytes = out.size() - stream.avail_out;
+    deflateEnd(&stream);
+  }
+  state.counters["bytes"] = static_cast<double>(bytes);
+}
+BENCHMARK(BM_Png_ZlibHuffmanOnly_OneThread)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // --- OpenEXR ------------------------------------------------------------------------------
 

@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
+#include <vector>
 
 #include "core/errors.h"
 #include "hdr/image_files.h"
@@ -228,6 +230,58 @@ TEST(PngFile, DecodesToThePixelsWrittenWithAnyThreadCount) {
   const std::string many = EncodePng(image, "a.png");
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   EXPECT_TRUE(EncodePng(image, "a.png") == many);
+}
+
+// Every Huffman case of the PNG writer's own deflate coder, decoded by libpng (through OpenCV):
+// one pixel; one colour (two literal codes: the value and the end of block); all 256 byte
+// values; and filtered bytes of Fibonacci frequencies, whose Huffman tree is deeper than
+// deflate's 15-bit limit.
+TEST(PngFile, HuffmanCoderCasesDecodeToThePixelsWritten) {
+  const auto image_of = [](int width, int height, const std::vector<uint8_t>& filtered) {
+    // Undo the Sub filter: the row bytes whose filtered values are `filtered` (cycled).
+    Image8 image;
+    image.width = width;
+    image.height = height;
+    image.rgb.resize(size_t{3} * width * height);
+    for (int y = 0; y < height; ++y) {
+      uint8_t* row = image.rgb.data() + size_t{3} * width * y;
+      for (int i = 0; i < 3 * width; ++i) {
+        const uint8_t f = filtered[(size_t{3} * width * y + i) % filtered.size()];
+        row[i] = static_cast<uint8_t>(i < 3 ? f : row[i - 3] + f);
+      }
+    }
+    return image;
+  };
+  std::vector<uint8_t> fibonacci;
+  for (int value = 0, a = 1, b = 1; value < 24; ++value) {
+    fibonacci.insert(fibonacci.end(), a, static_cast<uint8_t>(value * 7));
+    const int next = a + b;
+    a = b;
+    b = next;
+  }
+  std::shuffle(fibonacci.begin(), fibonacci.end(), std::mt19937(3));
+  std::vector<uint8_t> all(256 * 5);
+  std::mt19937 random(9);
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<uint8_t>(i < 256 ? i : random());
+  const std::vector<Image8> images = {image_of(1, 1, {77}), image_of(50, 70, {0}),
+                                      image_of(97, 130, all), image_of(1000, 70, fibonacci)};
+  ScratchDir dir;
+  for (const Image8& image : images) {
+    WritePng(dir.File("a.png"), image);
+    const cv::Mat decoded = cv::imread(dir.File("a.png"), cv::IMREAD_UNCHANGED);
+    ASSERT_EQ(decoded.type(), CV_8UC3) << image.width << "x" << image.height;
+    ASSERT_EQ(decoded.cols, image.width);
+    ASSERT_EQ(decoded.rows, image.height);
+    int64_t differing = 0;
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) {
+        const cv::Vec3b bgr = decoded.at<cv::Vec3b>(y, x);
+        const uint8_t* rgb = image.rgb.data() + (int64_t{y} * image.width + x) * 3;
+        differing += bgr[2] != rgb[0] || bgr[1] != rgb[1] || bgr[0] != rgb[2];
+      }
+    }
+    EXPECT_EQ(differing, 0) << image.width << "x" << image.height;
+  }
 }
 
 }  // namespace

@@ -8,6 +8,11 @@
 
 #include "core/errors.h"
 #include "hdr/blur.h"
+#include "hdr/simd.h"
+
+#if BRDF_HDR_HAS_AVX2_PATHS
+#include <immintrin.h>
+#endif
 
 namespace brdf {
 
@@ -23,6 +28,64 @@ inline void BrightPixel(const float* in, float t, float scale, float* out) {
   for (int c = 0; c < 3; ++c) out[c] = std::max(0.0f, exposed[c] * keep);
 }
 
+#if BRDF_HDR_HAS_AVX2_PATHS
+// BrightPixel on the pixels [0, 8n) of a row, eight at a time with its operations in its
+// order; returns 8n.
+BRDF_HDR_AVX2 int64_t BrightRowAvx2(const float* in, int64_t count, float t, float scale,
+                                    float* out) {
+  const __m256 zero = _mm256_setzero_ps(), scale8 = _mm256_set1_ps(scale), t8 = _mm256_set1_ps(t);
+  int64_t x = 0;
+  for (; x + 8 <= count; x += 8) {
+    const float* p = in + x * Image::kChannels;
+    // Pixels k and k + 4 in the halves of quad[k], then as planes (r, g, b, alpha).
+    __m256 quad[4];
+    for (int k = 0; k < 4; ++k) {
+      quad[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(p + 4 * k)),
+                                     _mm_loadu_ps(p + 16 + 4 * k), 1);
+    }
+    const __m256 t0 = _mm256_unpacklo_ps(quad[0], quad[1]),
+                 t1 = _mm256_unpackhi_ps(quad[0], quad[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(quad[2], quad[3]),
+                 t3 = _mm256_unpackhi_ps(quad[2], quad[3]);
+    const __m256 r = _mm256_mul_ps(_mm256_shuffle_ps(t0, t2, 0x44), scale8);
+    const __m256 g = _mm256_mul_ps(_mm256_shuffle_ps(t0, t2, 0xee), scale8);
+    const __m256 b = _mm256_mul_ps(_mm256_shuffle_ps(t1, t3, 0x44), scale8);
+    const __m256 luminance = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(0.2126f), r),
+                                                         _mm256_mul_ps(_mm256_set1_ps(0.7152f), g)),
+                                           _mm256_mul_ps(_mm256_set1_ps(0.0722f), b));
+    const __m256 bright = _mm256_and_ps(_mm256_cmp_ps(luminance, t8, _CMP_GT_OQ),
+                                        _mm256_cmp_ps(luminance, zero, _CMP_GT_OQ));
+    const __m256 keep = _mm256_div_ps(_mm256_sub_ps(luminance, t8), luminance);
+    // std::max(0, x) is x > 0 ? x : 0, as maxps(x, 0) (NaN gives 0).
+    const __m256 out_r = _mm256_and_ps(_mm256_max_ps(_mm256_mul_ps(r, keep), zero), bright);
+    const __m256 out_g = _mm256_and_ps(_mm256_max_ps(_mm256_mul_ps(g, keep), zero), bright);
+    const __m256 out_b = _mm256_and_ps(_mm256_max_ps(_mm256_mul_ps(b, keep), zero), bright);
+    // Back to pixels, alpha 0.
+    const __m256 u0 = _mm256_unpacklo_ps(out_r, out_g), u1 = _mm256_unpackhi_ps(out_r, out_g);
+    const __m256 u2 = _mm256_unpacklo_ps(out_b, zero), u3 = _mm256_unpackhi_ps(out_b, zero);
+    const __m256 p04 = _mm256_shuffle_ps(u0, u2, 0x44), p15 = _mm256_shuffle_ps(u0, u2, 0xee);
+    const __m256 p26 = _mm256_shuffle_ps(u1, u3, 0x44), p37 = _mm256_shuffle_ps(u1, u3, 0xee);
+    float* o = out + x * Image::kChannels;
+    _mm256_storeu_ps(o, _mm256_permute2f128_ps(p04, p15, 0x20));
+    _mm256_storeu_ps(o + 8, _mm256_permute2f128_ps(p26, p37, 0x20));
+    _mm256_storeu_ps(o + 16, _mm256_permute2f128_ps(p04, p15, 0x31));
+    _mm256_storeu_ps(o + 24, _mm256_permute2f128_ps(p26, p37, 0x31));
+  }
+  return x;
+}
+#endif
+
+// `count` pixels of the bright pass.
+void BrightRow(const float* in, int64_t count, float t, float scale, float* out) {
+  int64_t x = 0;
+#if BRDF_HDR_HAS_AVX2_PATHS
+  if (HdrAvx2Enabled()) x = BrightRowAvx2(in, count, t, scale, out);
+#endif
+  for (; x < count; ++x) {
+    BrightPixel(in + x * Image::kChannels, t, scale, out + x * Image::kChannels);
+  }
+}
+
 // Destination rows per task of the fused bright pass and step down; each task bright-passes
 // the 2 * kRowsPerTask + 2 source rows it needs (the two shared with a neighbour twice).
 constexpr int kRowsPerTask = 16;
@@ -35,10 +98,8 @@ Image BrightPass(const Image& image, double threshold, double exposure) {
   const float scale = static_cast<float>(exposure);
   tbb::parallel_for(tbb::blocked_range<int64_t>(0, image.pixel_count()),
                     [&](const tbb::blocked_range<int64_t>& range) {
-                      for (int64_t i = range.begin(); i < range.end(); ++i) {
-                        BrightPixel(image.rgba.data() + i * Image::kChannels, t, scale,
-                                    bright.rgba.data() + i * Image::kChannels);
-                      }
+                      BrightRow(image.rgba.data() + range.begin() * Image::kChannels, range.size(),
+                                t, scale, bright.rgba.data() + range.begin() * Image::kChannels);
                     });
   return bright;
 }
@@ -47,7 +108,7 @@ Image BrightPassDown(const Image& image, double threshold, double exposure) {
   const float t = static_cast<float>(threshold);
   const float scale = static_cast<float>(exposure);
   const int width = image.width, height = image.height;
-  Image result((width + 1) / 2, (height + 1) / 2);
+  Image result((width + 1) / 2, (height + 1) / 2, 0.0f);  // every float written
   const int tasks = (result.height + kRowsPerTask - 1) / kRowsPerTask;
   tbb::parallel_for(0, tasks, [&](int task) {
     const int y0 = task * kRowsPerTask, y1 = std::min(result.height, y0 + kRowsPerTask);
@@ -57,10 +118,7 @@ Image BrightPassDown(const Image& image, double threshold, double exposure) {
     for (int sy = first; sy <= last; ++sy) {
       const float* in = image.pixel(0, sy);
       float* out = bright.data() + int64_t{sy - first} * width * Image::kChannels;
-      for (int x = 0; x < width; ++x) {
-        BrightPixel(in + int64_t{x} * Image::kChannels, t, scale,
-                    out + int64_t{x} * Image::kChannels);
-      }
+      BrightRow(in, width, t, scale, out);
     }
     for (int y = y0; y < y1; ++y) {
       const float* rows[4];

@@ -9,6 +9,11 @@
 
 #include "core/errors.h"
 #include "hdr/blur.h"
+#include "hdr/simd.h"
+
+#if BRDF_HDR_HAS_AVX2_PATHS
+#include <immintrin.h>
+#endif
 
 namespace brdf {
 namespace {
@@ -146,6 +151,47 @@ class ResolvedTaps {
     return even + odd;
   }
 
+#if BRDF_HDR_HAS_AVX2_PATHS
+  // Sum(base) and Sum(base + one pixel) in the two halves of one vector: each half does
+  // Sum's arithmetic, so the bits are the same.
+  BRDF_HDR_AVX2 __m256 SumTwo(int64_t base) const {
+    __m256 even = _mm256_setzero_ps(), odd = _mm256_setzero_ps();
+    int k = 0;
+    for (; k + 1 < N; k += 2) {
+      even = _mm256_add_ps(even, _mm256_mul_ps(_mm256_set1_ps(weight_[k]),
+                                               _mm256_loadu_ps(row_[k] + (offset_[k] + base))));
+      odd =
+          _mm256_add_ps(odd, _mm256_mul_ps(_mm256_set1_ps(weight_[k + 1]),
+                                           _mm256_loadu_ps(row_[k + 1] + (offset_[k + 1] + base))));
+    }
+    if (k < N) {
+      even = _mm256_add_ps(even, _mm256_mul_ps(_mm256_set1_ps(weight_[k]),
+                                               _mm256_loadu_ps(row_[k] + (offset_[k] + base))));
+    }
+    return _mm256_add_ps(even, odd);
+  }
+  // Whether each pair of taps (2i, 2i + 1) reads neighbouring pixels of one row, the second
+  // to the right: then SumPaired() is Sum() with one load per pair.
+  bool Paired() const {
+    if (N % 2 != 0) return false;
+    for (int k = 0; k < N; k += 2) {
+      if (row_[k] != row_[k + 1] || offset_[k + 1] != offset_[k] + kC) return false;
+    }
+    return true;
+  }
+  // Sum(base) when Paired(): the low half of a vector gathers the even taps' sum, the high
+  // half the odd taps', in Sum's order.
+  BRDF_HDR_AVX2 __m128 SumPaired(int64_t base) const {
+    __m256 sum = _mm256_setzero_ps();
+    for (int k = 0; k < N; k += 2) {
+      const __m256 weights = _mm256_setr_m128(_mm_set1_ps(weight_[k]), _mm_set1_ps(weight_[k + 1]));
+      sum = _mm256_add_ps(sum,
+                          _mm256_mul_ps(weights, _mm256_loadu_ps(row_[k] + (offset_[k] + base))));
+    }
+    return _mm_add_ps(_mm256_castps256_ps128(sum), _mm256_extractf128_ps(sum, 1));
+  }
+#endif
+
  private:
   std::array<const float*, N> row_;
   std::array<int64_t, N> offset_;
@@ -156,6 +202,31 @@ class ResolvedTaps {
 // the step up has 13 of its 5x5.
 constexpr int kDownTaps = 16;
 constexpr int kUpTaps = 13;
+
+#if BRDF_HDR_HAS_AVX2_PATHS
+// The inside pixels [x, end) of a step down with paired taps; returns `end`.
+BRDF_HDR_AVX2 int DownInsideAvx2(const ResolvedTaps<kDownTaps>& taps, int x, int end, float* out) {
+  for (; x < end; ++x) {
+    _mm_storeu_ps(out + int64_t{x} * kC, taps.SumPaired(int64_t{2 * x} * kC));
+  }
+  return x;
+}
+
+// The inside pixels of a doubling step from the even pixel x, four at a time (pixels x and
+// x + 2 of the even phase in one vector, x + 1 and x + 3 of the odd one); returns the first
+// pixel not written.
+BRDF_HDR_AVX2 int UpInsideAvx2(const ResolvedTaps<kUpTaps>& even, const ResolvedTaps<kUpTaps>& odd,
+                               int x, int end, float* out) {
+  for (; x + 3 < end; x += 4) {
+    const int64_t base = int64_t{x / 2} * kC;
+    const __m256 even_pair = even.SumTwo(base), odd_pair = odd.SumTwo(base);
+    float* target = out + int64_t{x} * kC;
+    _mm256_storeu_ps(target, _mm256_permute2f128_ps(even_pair, odd_pair, 0x20));
+    _mm256_storeu_ps(target + 2 * kC, _mm256_permute2f128_ps(even_pair, odd_pair, 0x31));
+  }
+  return x;
+}
+#endif
 
 const std::vector<Tap>& DownTaps() {
   static const std::vector<Tap> taps = Taps(DownStencil());
@@ -170,7 +241,7 @@ const std::array<std::vector<Tap>, 4>& UpTaps() {
 }
 
 Image Down(const Image& source) {
-  Image result((source.width + 1) / 2, (source.height + 1) / 2);
+  Image result((source.width + 1) / 2, (source.height + 1) / 2, 0.0f);  // every float written
   tbb::parallel_for(0, result.height, [&](int y) {
     const float* rows[4];
     for (int k = 0; k < 4; ++k) {
@@ -182,7 +253,7 @@ Image Down(const Image& source) {
 }
 
 Image Up(const Image& source, int width, int height) {
-  Image result(width, height);
+  Image result(width, height, 0.0f);  // every float written
   tbb::parallel_for(0, height,
                     [&](int y) { DualFilterUpRow(source, width, y, result.pixel(0, y)); });
   return result;
@@ -202,10 +273,14 @@ void DualFilterDownRow(const float* const rows[4], int source_width, int source_
     ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
   }
   const ResolvedTaps<kDownTaps> resolved(rows, taps, -1);
-  for (int x = inside_begin; x < inside_end; ++x) {
+  int x = inside_begin;
+#if BRDF_HDR_HAS_AVX2_PATHS
+  if (HdrAvx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, inside_end, out);
+#endif
+  for (; x < inside_end; ++x) {
     StorePixel(resolved.Sum(int64_t{2 * x} * kC), out + int64_t{x} * kC);
   }
-  for (int x = inside_end; x < width; ++x) {
+  for (x = inside_end; x < width; ++x) {
     ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
   }
 }
@@ -229,6 +304,9 @@ void DualFilterUpRow(const Image& source, int width, int y, float* out) {
   }
   const ResolvedTaps<kUpTaps> resolved_even(rows, even, -2), resolved_odd(rows, odd, -2);
   int x = inside_begin;  // even: inside_begin is 4 or width
+#if BRDF_HDR_HAS_AVX2_PATHS
+  if (HdrAvx2Enabled()) x = UpInsideAvx2(resolved_even, resolved_odd, x, inside_end, out);
+#endif
   for (; x + 1 < inside_end; x += 2) {
     const int64_t base = int64_t{x / 2} * kC;
     StorePixel(resolved_even.Sum(base), out + int64_t{x} * kC);

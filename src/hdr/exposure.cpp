@@ -11,6 +11,11 @@
 
 #include "core/deterministic_reduce.h"
 #include "core/errors.h"
+#include "hdr/simd.h"
+
+#if BRDF_HDR_HAS_AVX2_PATHS
+#include <immintrin.h>
+#endif
 
 namespace brdf {
 namespace {
@@ -84,13 +89,197 @@ inline void AddFour(const Float4& luminance, const Float4& alpha, float delta, L
   sums->black -= counted & ~lit;
 }
 
+#if BRDF_HDR_HAS_AVX2_PATHS
+// Four RGBA pixels in each 128-bit half of `quad` (p[k] pixel k of the half) as planes:
+// channel[c] holds channel c of pixels 0..3 (low half) and 4..7 (high half).
+BRDF_HDR_AVX2 inline void TransposeQuads(const __m256 quad[4], __m256 channel[4]) {
+  const __m256 t0 = _mm256_unpacklo_ps(quad[0], quad[1]);  // r0 r1 g0 g1
+  const __m256 t1 = _mm256_unpackhi_ps(quad[0], quad[1]);  // b0 b1 a0 a1
+  const __m256 t2 = _mm256_unpacklo_ps(quad[2], quad[3]);  // r2 r3 g2 g3
+  const __m256 t3 = _mm256_unpackhi_ps(quad[2], quad[3]);  // b2 b3 a2 a3
+  channel[0] = _mm256_shuffle_ps(t0, t2, 0x44);
+  channel[1] = _mm256_shuffle_ps(t0, t2, 0xee);
+  channel[2] = _mm256_shuffle_ps(t1, t3, 0x44);
+  channel[3] = _mm256_shuffle_ps(t1, t3, 0xee);
+}
+
+// Log4 on eight lanes: the same operations, so the same bits.
+BRDF_HDR_AVX2 inline __m256 Log8(__m256 x) {
+  const __m256i bits = _mm256_castps_si256(x);
+  __m256i exponent =
+      _mm256_sub_epi32(_mm256_and_si256(_mm256_srli_epi32(bits, 23), _mm256_set1_epi32(0xff)),
+                       _mm256_set1_epi32(127));
+  __m256 m = _mm256_castsi256_ps(_mm256_or_si256(
+      _mm256_and_si256(bits, _mm256_set1_epi32(0x007fffff)), _mm256_set1_epi32(0x3f800000)));
+  const __m256 above = _mm256_cmp_ps(m, _mm256_set1_ps(1.41421356f), _CMP_GT_OQ);
+  m = _mm256_blendv_ps(m, _mm256_mul_ps(m, _mm256_set1_ps(0.5f)), above);
+  exponent = _mm256_sub_epi32(exponent, _mm256_castps_si256(above));
+  const __m256 one = _mm256_set1_ps(1.0f);
+  const __m256 s = _mm256_div_ps(_mm256_sub_ps(m, one), _mm256_add_ps(m, one));
+  const __m256 s2 = _mm256_mul_ps(s, s);
+  __m256 series =
+      _mm256_add_ps(_mm256_set1_ps(1.0f / 7), _mm256_mul_ps(s2, _mm256_set1_ps(1.0f / 9)));
+  series = _mm256_add_ps(_mm256_set1_ps(1.0f / 5), _mm256_mul_ps(s2, series));
+  series = _mm256_add_ps(_mm256_set1_ps(1.0f / 3), _mm256_mul_ps(s2, series));
+  series = _mm256_add_ps(one, _mm256_mul_ps(s2, series));
+  const __m256 e = _mm256_cvtepi32_ps(exponent);
+  return _mm256_add_ps(_mm256_mul_ps(e, _mm256_set1_ps(0.693147181f)),
+                       _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(2.0f), s), series));
+}
+
+// AddRow's loop eight pixels at a time: pixels x0..x0+3 are folded into the lanes, then
+// x0+4..x0+7, each group as AddFour does it (the library's log for a whole group of four with
+// an argument that is not a normal float). Returns the first pixel not folded.
+//
+// With kExpose, the row is made on the way from `in` (and `add`) as ExposeRow does it, and
+// stored to `keep` when that is not null; otherwise `in` is the row and the rest unused.
+template <bool kExpose>
+BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, float strength,
+                             float* keep, int width, float delta, LaneSums* sums) {
+  __m256d log_sum, lit_log_sum;
+  std::memcpy(&log_sum, &sums->log_sum, sizeof(log_sum));
+  std::memcpy(&lit_log_sum, &sums->lit_log_sum, sizeof(lit_log_sum));
+  // Maxima and counts in eight lanes, lane k + 4 folded into lane k at the end (neither the
+  // maximum nor an integer count depends on the order).
+  __m128 max4;
+  __m128i pixels4, black4;
+  std::memcpy(&max4, &sums->max, sizeof(max4));
+  std::memcpy(&pixels4, &sums->pixels, sizeof(pixels4));
+  std::memcpy(&black4, &sums->black, sizeof(black4));
+  __m256 max = _mm256_castps128_ps256(max4);
+  max = _mm256_insertf128_ps(max, _mm_setzero_ps(), 1);
+  __m256i pixels = _mm256_setzero_si256(), black = _mm256_setzero_si256();
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256 delta8 = _mm256_set1_ps(delta);
+  const __m256 largest = _mm256_set1_ps(std::numeric_limits<float>::max());
+  const __m256 smallest = _mm256_set1_ps(std::numeric_limits<float>::min());
+  int x0 = 0;
+  const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
+  for (; x0 + 8 <= width; x0 += 8) {
+    const int64_t at = int64_t{x0} * Image::kChannels;
+    __m256 quad[4], channel[4];
+    for (int k = 0; k < 4; ++k) {
+      quad[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(in + at + 4 * k)),
+                                     _mm_loadu_ps(in + at + 16 + 4 * k), 1);
+    }
+    if constexpr (kExpose) {
+      for (int k = 0; k < 4; ++k) {
+        __m256 exposed = _mm256_mul_ps(quad[k], scale8);
+        if (add != nullptr) {
+          const __m256 bloom =
+              _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(add + at + 4 * k)),
+                                   _mm_loadu_ps(add + at + 16 + 4 * k), 1);
+          exposed = _mm256_add_ps(exposed, _mm256_mul_ps(strength8, bloom));
+        }
+        quad[k] = _mm256_blend_ps(exposed, quad[k], 0x88);  // alpha kept
+        if (keep != nullptr) {
+          _mm_storeu_ps(keep + at + 4 * k, _mm256_castps256_ps128(quad[k]));
+          _mm_storeu_ps(keep + at + 16 + 4 * k, _mm256_extractf128_ps(quad[k], 1));
+        }
+      }
+    }
+    TransposeQuads(quad, channel);
+    // PixelLuminance's operations in its order, then std::max(0, L) (NaN gives 0).
+    __m256 luminance =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(0.2126f), channel[0]),
+                                    _mm256_mul_ps(_mm256_set1_ps(0.7152f), channel[1])),
+                      _mm256_mul_ps(_mm256_set1_ps(0.0722f), channel[2]));
+    luminance = _mm256_and_ps(luminance, _mm256_cmp_ps(luminance, zero, _CMP_GT_OQ));
+    const __m256 argument = _mm256_add_ps(delta8, luminance);
+    __m256 logs = Log8(argument);
+    const int normal =
+        _mm256_movemask_ps(_mm256_and_ps(_mm256_cmp_ps(argument, largest, _CMP_LE_OQ),
+                                         _mm256_cmp_ps(argument, smallest, _CMP_GE_OQ)));
+    if (normal != 0xff) {  // a group of four with an infinite or subnormal argument
+      alignas(32) float lanes[8], arguments[8];
+      _mm256_store_ps(lanes, logs);
+      _mm256_store_ps(arguments, argument);
+      for (int group = 0; group < 2; ++group) {
+        if (((normal >> (4 * group)) & 0xf) == 0xf) continue;
+        for (int k = 4 * group; k < 4 * group + 4; ++k) lanes[k] = std::log(arguments[k]);
+      }
+      logs = _mm256_load_ps(lanes);
+    }
+    const __m256 counted = _mm256_cmp_ps(channel[3], zero, _CMP_GT_OQ);
+    const __m256 lit = _mm256_and_ps(counted, _mm256_cmp_ps(luminance, zero, _CMP_GT_OQ));
+    const __m256 counted_logs = _mm256_and_ps(logs, counted);
+    const __m256 lit_logs = _mm256_and_ps(logs, lit);
+    log_sum = _mm256_add_pd(log_sum, _mm256_cvtps_pd(_mm256_castps256_ps128(counted_logs)));
+    lit_log_sum = _mm256_add_pd(lit_log_sum, _mm256_cvtps_pd(_mm256_castps256_ps128(lit_logs)));
+    log_sum = _mm256_add_pd(log_sum, _mm256_cvtps_pd(_mm256_extractf128_ps(counted_logs, 1)));
+    lit_log_sum = _mm256_add_pd(lit_log_sum, _mm256_cvtps_pd(_mm256_extractf128_ps(lit_logs, 1)));
+    max = _mm256_blendv_ps(max, luminance,
+                           _mm256_and_ps(counted, _mm256_cmp_ps(luminance, max, _CMP_GT_OQ)));
+    pixels = _mm256_sub_epi32(pixels, _mm256_castps_si256(counted));
+    black = _mm256_sub_epi32(black, _mm256_castps_si256(_mm256_andnot_ps(lit, counted)));
+  }
+  std::memcpy(&sums->log_sum, &log_sum, sizeof(log_sum));
+  std::memcpy(&sums->lit_log_sum, &lit_log_sum, sizeof(lit_log_sum));
+  max4 = _mm256_castps256_ps128(max);
+  const __m128 high = _mm256_extractf128_ps(max, 1);
+  max4 = _mm_blendv_ps(max4, high, _mm_cmpgt_ps(high, max4));
+  pixels4 = _mm_add_epi32(_mm_add_epi32(pixels4, _mm256_castsi256_si128(pixels)),
+                          _mm256_extracti128_si256(pixels, 1));
+  black4 = _mm_add_epi32(_mm_add_epi32(black4, _mm256_castsi256_si128(black)),
+                         _mm256_extracti128_si256(black, 1));
+  std::memcpy(&sums->max, &max4, sizeof(max4));
+  std::memcpy(&sums->pixels, &pixels4, sizeof(pixels4));
+  std::memcpy(&sums->black, &black4, sizeof(black4));
+  return x0;
+}
+
+// ExposeRow's arithmetic on the floats [0, 8n) of a row; returns 8n.
+BRDF_HDR_AVX2 int64_t ExposeRowAvx2(const float* in, const float* add, int64_t floats, float scale,
+                                    float strength, float* out) {
+  const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
+  int64_t i = 0;
+  for (; i + 8 <= floats; i += 8) {
+    const __m256 pixels = _mm256_loadu_ps(in + i);
+    __m256 exposed = _mm256_mul_ps(pixels, scale8);
+    if (add != nullptr) {
+      exposed = _mm256_add_ps(exposed, _mm256_mul_ps(strength8, _mm256_loadu_ps(add + i)));
+    }
+    _mm256_storeu_ps(out + i, _mm256_blend_ps(exposed, pixels, 0x88));  // alpha kept
+  }
+  return i;
+}
+#endif
+
+// ExposeRow on the pixels [x0, width).
+void ExposeRowFrom(const float* in, const float* add, int x0, int width, float scale,
+                   float strength, float* out) {
+  int64_t i = int64_t{x0} * Image::kChannels;
+  const int64_t floats = int64_t{width} * Image::kChannels;
+#if BRDF_HDR_HAS_AVX2_PATHS
+  if (HdrAvx2Enabled()) {
+    i += ExposeRowAvx2(in + i, add == nullptr ? nullptr : add + i, floats - i, scale, strength,
+                       out + i);
+  }
+#endif
+  if (add == nullptr) {
+    for (; i < floats; i += Image::kChannels) {
+      out[i] = in[i] * scale;
+      out[i + 1] = in[i + 1] * scale;
+      out[i + 2] = in[i + 2] * scale;
+      out[i + 3] = in[i + 3];
+    }
+    return;
+  }
+  for (; i < floats; i += Image::kChannels) {
+    out[i] = in[i] * scale + strength * add[i];
+    out[i + 1] = in[i + 1] * scale + strength * add[i + 1];
+    out[i + 2] = in[i + 2] * scale + strength * add[i + 2];
+    out[i + 3] = in[i + 3];
+  }
+}
+
 // Folds one row into `sums`, four pixels at a time, the sums in double. The sums are kept in
 // a local while the row is read: a vector of floats may alias the row, so through the pointer
 // they would be stored and reloaded for every four pixels.
-void AddRow(const float* row, int width, float delta, LaneSums* sums) {
+// Starts at pixel `x0`, a multiple of 4 (the lane of pixel x is x mod 4).
+void AddRow(const float* row, int x0, int width, float delta, LaneSums* sums) {
   LaneSums local = *sums;
   const Float4 zero{0, 0, 0, 0};
-  int x0 = 0;
   for (; x0 + 4 <= width; x0 += 4) {
     const float* p = row + int64_t{x0} * Image::kChannels;
     const Float4 r{p[0], p[4], p[8], p[12]}, g{p[1], p[5], p[9], p[13]},
@@ -123,13 +312,11 @@ LogSum Join(const LaneSums& lanes) {
   return sum;
 }
 
-}  // namespace
-
-SceneLuminance MeasureSceneLuminanceByRow(
-    int width, int height, double delta,
-    const std::function<const float*(int y, float* scratch)>& row) {
-  // A fixed summation order: the exposure, and so every output byte, must not depend on the
-  // thread count.
+// The statistics of `height` rows, `fold(y, scratch, delta, lanes)` folding row y into the
+// lanes (`scratch` has room for two RGBA rows). A fixed summation order: the exposure, and so
+// every output byte, must not depend on the thread count.
+template <typename Fold>
+SceneLuminance MeasureRows(int width, int height, double delta, const Fold& fold) {
   const int64_t rows_per_chunk = std::max<int64_t>(1, kPixelGrain / std::max(1, width));
   const float delta_f = static_cast<float>(delta);
   const LogSum total = DeterministicReduce(
@@ -138,7 +325,7 @@ SceneLuminance MeasureSceneLuminanceByRow(
         std::vector<float> scratch(2 * int64_t{width} * Image::kChannels);
         LaneSums lanes;
         for (int64_t y = begin; y < end; ++y) {
-          AddRow(row(static_cast<int>(y), scratch.data()), width, delta_f, &lanes);
+          fold(static_cast<int>(y), scratch.data(), delta_f, &lanes);
         }
         const LogSum chunk = Join(lanes);
         sum.log_sum += chunk.log_sum;
@@ -164,6 +351,50 @@ SceneLuminance MeasureSceneLuminanceByRow(
   const int64_t lit = total.pixels - total.black;
   scene.log_average_lit = lit > 0 ? std::exp(total.lit_log_sum / lit) : 0.0;
   return scene;
+}
+
+}  // namespace
+
+SceneLuminance MeasureSceneLuminanceByRow(
+    int width, int height, double delta,
+    const std::function<const float*(int y, float* scratch)>& row) {
+  return MeasureRows(
+      width, height, delta, [&](int y, float* scratch, float delta_f, LaneSums* lanes) {
+        const float* pixels = row(y, scratch);
+        int x0 = 0;
+#if BRDF_HDR_HAS_AVX2_PATHS
+        if (HdrAvx2Enabled()) {
+          x0 = AddRowAvx2<false>(pixels, nullptr, 1.0f, 0.0f, nullptr, width, delta_f, lanes);
+        }
+#endif
+        AddRow(pixels, x0, width, delta_f, lanes);
+      });
+}
+
+SceneLuminance MeasureExposedLuminanceByRow(
+    int width, int height, double delta, float scale, float strength,
+    const std::function<ExposedRowSource(int y, float* scratch)>& row) {
+  return MeasureRows(
+      width, height, delta, [&](int y, float* scratch, float delta_f, LaneSums* lanes) {
+        const ExposedRowSource source = row(y, scratch);
+        // The exposed row is made where it is kept, or in the scratch row's second half.
+        float* exposed =
+            source.keep != nullptr ? source.keep : scratch + int64_t{width} * Image::kChannels;
+        int x0 = 0;
+#if BRDF_HDR_HAS_AVX2_PATHS
+        if (HdrAvx2Enabled()) {
+          x0 = AddRowAvx2<true>(source.in, source.add, scale, strength, source.keep, width, delta_f,
+                                lanes);
+        }
+#endif
+        ExposeRowFrom(source.in, source.add, x0, width, scale, strength, exposed);
+        AddRow(exposed, x0, width, delta_f, lanes);
+      });
+}
+
+void ExposeRow(const float* in, const float* add, int width, float scale, float strength,
+               float* out) {
+  ExposeRowFrom(in, add, 0, width, scale, strength, out);
 }
 
 SceneLuminance MeasureSceneLuminance(const Image& image, double delta) {

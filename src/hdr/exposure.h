@@ -33,6 +33,26 @@ SceneLuminance MeasureSceneLuminanceByRow(
     int width, int height, double delta,
     const std::function<const float*(int y, float* scratch)>& row);
 
+// The statistics of an exposed (and bloomed) image that exists only a row at a time: row y
+// has RGB = scale * in + strength * add (`add` null: no bloom), alpha that of `in`, as
+// ExposeRow() makes it. `row(y, scratch)` returns row y's `in` and `add` (`scratch` has room
+// for one RGBA row, e.g. for a bloom row made on the fly) and where to keep the exposed row
+// (null: nowhere). Summed like MeasureSceneLuminanceByRow, with the same result.
+struct ExposedRowSource {
+  const float* in = nullptr;
+  const float* add = nullptr;
+  float* keep = nullptr;
+};
+SceneLuminance MeasureExposedLuminanceByRow(
+    int width, int height, double delta, float scale, float strength,
+    const std::function<ExposedRowSource(int y, float* scratch)>& row);
+
+// One exposed (and bloomed) row of `width` RGBA pixels into `out`: RGB = in * scale
+// (+ strength * add when `add` is not null), alpha copied; the arithmetic of ApplyExposure
+// then AddBloom, for a pipeline that never stores the exposed image.
+void ExposeRow(const float* in, const float* add, int width, float scale, float strength,
+               float* out);
+
 // Multiplies RGB by `exposure` (2^EV for an exposure value EV).
 void ApplyExposure(Image* image, double exposure);
 

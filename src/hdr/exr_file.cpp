@@ -105,7 +105,7 @@ Image ReadExr(const std::string& path) {
     const bool has_y = channels.findChannel("Y") != nullptr;
     if (!has_rgb && !has_y) throw InputError(path, "no R, G, B or Y channel to read");
 
-    Image image(width, height);
+    Image image(width, height, 0.0f);  // every channel is read or filled (A with 1)
     Imf::FrameBuffer frame;
     if (has_rgb) {
       frame.insert("R", FloatSlice(&image, 0, window.min.x, window.min.y, 0.0));

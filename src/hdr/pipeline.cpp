@@ -5,12 +5,18 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "core/colour.h"
 #include "core/errors.h"
 #include "hdr/bloom.h"
 #include "hdr/exposure.h"
+#include "hdr/simd.h"
+
+#if BRDF_HDR_HAS_AVX2_PATHS
+#include <immintrin.h>
+#endif
 
 namespace brdf {
 
@@ -110,6 +116,72 @@ namespace {
 // Rows per task of the last pass.
 constexpr int kRowsPerTask = 8;
 
+#if BRDF_HDR_HAS_AVX2_PATHS
+// PixelToneMap<kOperator> on the pixels [0, 8n) of an RGBA row, eight at a time with its
+// operations in its order; writes the planes red[x], green[x], blue[x]; returns 8n. Not for
+// the exponential operator (std::exp has no exact vector twin). The row is `row`, or with
+// kExpose the row ExposeRow(row, add, scale, strength) would make, made here on the way.
+template <ToneOperator kOperator, bool kExpose>
+BRDF_HDR_AVX2 int ToneMapRowAvx2(const float* row, const float* add, float scale, float strength,
+                                 int width, float key_scale, float white, float* red, float* green,
+                                 float* blue) {
+  static_assert(kOperator != ToneOperator::kExposure, "std::exp has no exact vector twin");
+  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+  const __m256 key8 = _mm256_set1_ps(key_scale), white_squared = _mm256_set1_ps(white * white);
+  const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
+  int x = 0;
+  for (; x + 8 <= width; x += 8) {
+    const int64_t at = int64_t{x} * Image::kChannels;
+    __m256 quad[4];  // pixels k and k + 4 in the halves of quad[k]
+    for (int k = 0; k < 4; ++k) {
+      quad[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(row + at + 4 * k)),
+                                     _mm_loadu_ps(row + at + 16 + 4 * k), 1);
+      if constexpr (kExpose) {  // ExposeRow's arithmetic (alpha is not needed here)
+        quad[k] = _mm256_mul_ps(quad[k], scale8);
+        if (add != nullptr) {
+          const __m256 bloom =
+              _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(add + at + 4 * k)),
+                                   _mm_loadu_ps(add + at + 16 + 4 * k), 1);
+          quad[k] = _mm256_add_ps(quad[k], _mm256_mul_ps(strength8, bloom));
+        }
+      }
+    }
+    const __m256 t0 = _mm256_unpacklo_ps(quad[0], quad[1]),
+                 t1 = _mm256_unpackhi_ps(quad[0], quad[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(quad[2], quad[3]),
+                 t3 = _mm256_unpackhi_ps(quad[2], quad[3]);
+    const __m256 channel[3] = {_mm256_shuffle_ps(t0, t2, 0x44), _mm256_shuffle_ps(t0, t2, 0xee),
+                               _mm256_shuffle_ps(t1, t3, 0x44)};
+    const __m256 world =
+        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(0.2126f), channel[0]),
+                                    _mm256_mul_ps(_mm256_set1_ps(0.7152f), channel[1])),
+                      _mm256_mul_ps(_mm256_set1_ps(0.0722f), channel[2]));
+    __m256 display = world;
+    if constexpr (kOperator == ToneOperator::kReinhard) {
+      const __m256 scaled = _mm256_mul_ps(key8, world);
+      display = _mm256_div_ps(scaled, _mm256_add_ps(one, scaled));
+    } else if constexpr (kOperator == ToneOperator::kReinhardExtended) {
+      const __m256 scaled = _mm256_mul_ps(key8, world);
+      display = _mm256_div_ps(
+          _mm256_mul_ps(scaled, _mm256_add_ps(one, _mm256_div_ps(scaled, white_squared))),
+          _mm256_add_ps(one, scaled));
+    }
+    // L_d / L_w where L_w > 0, else 0.
+    const __m256 ratio =
+        _mm256_and_ps(_mm256_div_ps(display, world), _mm256_cmp_ps(world, zero, _CMP_GT_OQ));
+    float* const planes[3] = {red + x, green + x, blue + x};
+    for (int c = 0; c < 3; ++c) {
+      // std::clamp(v, 0, 1): v < 0 ? 0 : (1 < v ? 1 : v).
+      __m256 v = _mm256_mul_ps(channel[c], ratio);
+      v = _mm256_blendv_ps(v, zero, _mm256_cmp_ps(v, zero, _CMP_LT_OQ));
+      v = _mm256_blendv_ps(v, one, _mm256_cmp_ps(one, v, _CMP_LT_OQ));
+      _mm256_storeu_ps(planes[c], v);
+    }
+  }
+  return x;
+}
+#endif
+
 // The exposed and bloomed image, row by row, never stored whole: row y is
 // exposure * input (+ strength * bloom), the arithmetic of ApplyExposure and AddBloom. The
 // bloom is either full size or (dual filtering) at half size, its last doubling step taken
@@ -124,29 +196,25 @@ class ExposedRows {
         bloom_is_half_(bloom_is_half),
         strength_(static_cast<float>(strength)) {}
 
+  float scale() const { return scale_; }
+  float strength() const { return strength_; }
+  // Row y of the input and of the full-size bloom (null without bloom), the bloom's row made
+  // in `bloom_scratch` (width * 4 floats) when it is kept at half size.
+  ExposedRowSource Sources(int y, float* bloom_scratch) const {
+    ExposedRowSource source;
+    source.in = image_.pixel(0, y);
+    if (bloom_ != nullptr && bloom_is_half_) {
+      DualFilterUpRow(*bloom_, image_.width, y, bloom_scratch);
+      source.add = bloom_scratch;
+    } else if (bloom_ != nullptr) {
+      source.add = bloom_->pixel(0, y);
+    }
+    return source;
+  }
   // Row y into `scratch` (width * 4 floats); `bloom_scratch` has as much room again.
   const float* Row(int y, float* scratch, float* bloom_scratch) const {
-    const int64_t floats = int64_t{image_.width} * Image::kChannels;
-    const float* in = image_.pixel(0, y);
-    // Locals, not members, in the loops: a store to a float row may alias a float member.
-    const float scale = scale_, strength = strength_;
-    if (bloom_ == nullptr) {
-      for (int64_t i = 0; i < floats; i += Image::kChannels) {
-        scratch[i] = in[i] * scale;
-        scratch[i + 1] = in[i + 1] * scale;
-        scratch[i + 2] = in[i + 2] * scale;
-        scratch[i + 3] = in[i + 3];
-      }
-      return scratch;
-    }
-    const float* add = bloom_is_half_ ? bloom_scratch : bloom_->pixel(0, y);
-    if (bloom_is_half_) DualFilterUpRow(*bloom_, image_.width, y, bloom_scratch);
-    for (int64_t i = 0; i < floats; i += Image::kChannels) {
-      scratch[i] = in[i] * scale + strength * add[i];
-      scratch[i + 1] = in[i + 1] * scale + strength * add[i + 1];
-      scratch[i + 2] = in[i + 2] * scale + strength * add[i + 2];
-      scratch[i + 3] = in[i + 3];
-    }
+    const ExposedRowSource source = Sources(y, bloom_scratch);
+    ExposeRow(source.in, source.add, image_.width, scale_, strength_, scratch);
     return scratch;
   }
 
@@ -210,11 +278,12 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   std::unique_ptr<float[]> kept;
   if (reinhard) {
     if (bloom_is_half) kept.reset(new float[image.pixel_count() * Image::kChannels]);
-    mapped =
-        MeasureSceneLuminanceByRow(width, image.height, options.delta, [&](int y, float* scratch) {
-          float* target = kept ? kept.get() + y * row_floats : scratch;
-          return rows.Row(y, target, scratch + row_floats);
-        });
+    mapped = MeasureExposedLuminanceByRow(width, image.height, options.delta, rows.scale(),
+                                          rows.strength(), [&](int y, float* scratch) {
+                                            ExposedRowSource source = rows.Sources(y, scratch);
+                                            if (kept) source.keep = kept.get() + y * row_floats;
+                                            return source;
+                                          });
   }
   result.mapping = PlanToneMapping(options.tone_operator, mapped, options.key, options.white);
 
@@ -224,15 +293,53 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   display.height = image.height;
   display.rgb.resize(image.pixel_count() * 3);
   const int tasks = (image.height + kRowsPerTask - 1) / kRowsPerTask;
+  [[maybe_unused]] const bool avx2 = HdrAvx2Enabled();
   ForToneOperator(result.mapping, [&](const auto& map) {
+    [[maybe_unused]] constexpr ToneOperator kOperator = std::decay_t<decltype(map)>::kToneOperator;
     tbb::parallel_for(0, tasks, [&](int task) {
       std::vector<float> scratch(2 * row_floats);
-      std::vector<float> mapped(int64_t{width} * 3);  // one row tone mapped, RGB
+      // One row tone mapped: RGB, or (AVX2) three planes.
+      std::vector<float> mapped(int64_t{width} * 3);
       const int y1 = std::min(image.height, (task + 1) * kRowsPerTask);
       for (int y = task * kRowsPerTask; y < y1; ++y) {
+        uint8_t* out = display.rgb.data() + int64_t{y} * width * 3;
+#if BRDF_HDR_HAS_AVX2_PATHS
+        if constexpr (kOperator != ToneOperator::kExposure) {
+          if (avx2) {
+            float* const red = mapped.data();
+            float* const green = red + width;
+            float* const blue = green + width;
+            // The kept row, or the exposure (and bloom) made on the way from the input.
+            const float* row = nullptr;
+            int x = 0;
+            if (kept) {
+              row = kept.get() + y * row_floats;
+              x = ToneMapRowAvx2<kOperator, false>(row, nullptr, 1.0f, 0.0f, width, map.key_scale(),
+                                                   map.white(), red, green, blue);
+            } else {
+              const ExposedRowSource source = rows.Sources(y, scratch.data() + row_floats);
+              x = ToneMapRowAvx2<kOperator, true>(source.in, source.add, rows.scale(),
+                                                  rows.strength(), width, map.key_scale(),
+                                                  map.white(), red, green, blue);
+              if (x < width) {  // the last pixels through the scalar path
+                const int64_t at = int64_t{x} * Image::kChannels;
+                ExposeRow(source.in + at, source.add == nullptr ? nullptr : source.add + at,
+                          width - x, rows.scale(), rows.strength(), scratch.data() + at);
+              }
+              row = scratch.data();
+            }
+            for (; x < width; ++x) {
+              float rgb[3];
+              map(row + int64_t{x} * Image::kChannels, rgb);
+              red[x] = rgb[0], green[x] = rgb[1], blue[x] = rgb[2];
+            }
+            quantize.EncodePlanes(red, green, blue, width, out);
+            continue;
+          }
+        }
+#endif
         const float* row = kept ? kept.get() + y * row_floats
                                 : rows.Row(y, scratch.data(), scratch.data() + row_floats);
-        uint8_t* out = display.rgb.data() + int64_t{y} * width * 3;
         for (int x = 0; x < width; ++x) {
           map(row + int64_t{x} * Image::kChannels, mapped.data() + 3 * x);
         }

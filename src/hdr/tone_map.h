@@ -58,9 +58,13 @@ ToneMapping PlanToneMapping(ToneOperator tone_operator, const SceneLuminance& sc
 template <ToneOperator kOperator>
 class PixelToneMap {
  public:
+  static constexpr ToneOperator kToneOperator = kOperator;
   explicit PixelToneMap(const ToneMapping& mapping)
       : key_scale_(static_cast<float>(mapping.key_scale)),
         white_(static_cast<float>(mapping.white)) {}
+  // The constants operator() uses, for a vector twin of it.
+  float key_scale() const { return key_scale_; }
+  float white() const { return white_; }
   // RGB of `in` mapped and clipped to [0, 1] into out[0..2]; `in` may be `out`.
   void operator()(const float* in, float* out) const {
     const float world = PixelLuminance(in);

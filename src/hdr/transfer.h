@@ -38,7 +38,12 @@ class Quantizer8 {
   }
   // `count` values at once, as operator() one by one: the table and the step count are read
   // into locals once (a byte store may alias anything, so a per-value call reloads them).
+  // With AVX2 (simd.h), eight values at a time: the bucket table is read by gathers.
   void EncodeMany(const float* linear, int64_t count, uint8_t* out) const;
+  // Three planes of `count` values each (red, green, blue) into `count` interleaved RGB byte
+  // triples, as operator() value by value (the pipeline's AVX2 tone mapping writes planes).
+  void EncodePlanes(const float* red, const float* green, const float* blue, int64_t count,
+                    uint8_t* rgb) const;
 
  private:
   struct Bucket;
@@ -53,10 +58,10 @@ class Quantizer8 {
   // Code k + 1 starts at thresholds_[k]; thresholds_[255] = infinity stops the count at 255.
   std::array<float, 256> thresholds_;
   // The code at the start of a bucket and the threshold of the next one, side by side: one
-  // load finds both.
+  // load finds both (32-bit code: no padding, so a vector gather reads defined bytes).
   struct Bucket {
     float next;
-    uint8_t start;
+    uint32_t start;
   };
   std::array<Bucket, kBuckets> buckets_;
   int max_codes_per_bucket_ = 0;  // most code changes inside one bucket
@@ -69,7 +74,7 @@ inline uint8_t Quantizer8::Encode(float linear, const Bucket* buckets, const flo
   uint32_t bits;
   std::memcpy(&bits, &linear, sizeof(bits));
   const Bucket& bucket = buckets[bits >> kBucketShift];
-  int code = bucket.start + (linear >= bucket.next);
+  int code = static_cast<int>(bucket.start) + (linear >= bucket.next);
   for (int step = 0; step < extra_steps; ++step) code += linear >= thresholds[code];
   return static_cast<uint8_t>(code);
 }
