@@ -261,9 +261,9 @@ TEST(GonioSurfaceTest, FastAtan2MatchesTheLibrary) {
 // detector finds: on the 5° hemisphere (with detectors around the pole and across phi = 0),
 // for random directions and for directions on the cells' own boundaries (whole degrees).
 TEST(GonioSurfaceTest, DetectorLookupFindsEveryConeContainingTheDirection) {
+  const Schedule hemisphere = MakeSchedule("hemisphere");  // outlives the loop over its detectors
   std::vector<Vec3> detectors;
-  for (const Detector& d : MakeSchedule("hemisphere").incidences[6].detectors)
-    detectors.push_back(d.wo);
+  for (const Detector& d : hemisphere.incidences[6].detectors) detectors.push_back(d.wo);
   detectors.push_back(SphericalDirection(DegToRad(0.3), DegToRad(200)));
   detectors.push_back(SphericalDirection(DegToRad(88.9), DegToRad(359.7)));
   for (const double solid_angle : {0.001, 0.01, 0.05}) {
