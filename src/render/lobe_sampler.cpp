@@ -6,8 +6,33 @@
 
 namespace brdf {
 
-LobeSampler::LobeSampler(const LobeCoordinates& lobe, const Vec3f& wo)
-    : lobe_(lobe), wo_(wo), wo_double_(wo.cast<double>()) {
+LobeTechnique::LobeTechnique(const LobeCoordinates& lobe_coordinates) : lobe(lobe_coordinates) {
+  // The density of the axis variable (wi for the normal and the mirror, h for the half vector)
+  // falls with the angle beta from the axis; the rim is where it reaches kCoreDensity.
+  if (lobe.distribution == nullptr) {
+    const double normalization = (lobe.exponent + 1.0) * 0.5 * kInvPi;
+    if (normalization > kCoreDensity && lobe.exponent > 0.0) {
+      core_one_minus_cos =
+          static_cast<float>(-std::expm1(std::log(kCoreDensity / normalization) / lobe.exponent));
+    }
+    return;
+  }
+  // A distribution of its own: bisect in cos(beta) (the rule need not be exact, only fixed).
+  if (LobeDensity(lobe, 1e-6) >= kCoreDensity) return;
+  double inside = 1.0, outside = 1e-6;
+  for (int step = 0; step < 60; ++step) {
+    const double middle = 0.5 * (inside + outside);
+    (LobeDensity(lobe, middle) >= kCoreDensity ? inside : outside) = middle;
+  }
+  core_one_minus_cos = static_cast<float>(1.0 - outside);
+}
+
+LobeSampler::LobeSampler(const LobeTechnique& technique, const Vec3f& wo)
+    : lobe_(technique.lobe),
+      core_one_minus_cos_(technique.core_one_minus_cos),
+      wo_(wo),
+      wo_double_(wo.cast<double>()) {
+  const LobeCoordinates& lobe = technique.lobe;
   exponent_ = static_cast<float>(lobe.exponent);
   normalization_ = static_cast<float>((lobe.exponent + 1.0) * 0.5 * kInvPi);
   inverse_exponent_plus_one_ = static_cast<float>(1.0 / (lobe.exponent + 1.0));
@@ -42,6 +67,24 @@ Vec3f LobeSampler::Sample(float u0, float u1) const {
       return 2.0f * wo_.dot(about_axis) * about_axis - wo_;
   }
   return about_axis;
+}
+
+float LobeSampler::AxisOneMinusCos(const Vec3f& wi) const {
+  switch (lobe_.frame) {
+    case LobeFrame::kNormal:
+      return wi.z() > 0.0f ? (wi.x() * wi.x() + wi.y() * wi.y()) / (1.0f + wi.z()) : 2.0f;
+    case LobeFrame::kMirror:
+      return 0.5f * (wi - Vec3f(-wo_.x(), -wo_.y(), wo_.z())).squaredNorm();
+    case LobeFrame::kHalfVector: {
+      const Vec3f sum = wi + wo_;
+      const float norm_squared = sum.squaredNorm();
+      if (!(norm_squared > 0.0f) || !(sum.z() > 0.0f)) return 2.0f;
+      // With h = sum / |sum|: 1 - h_z = (h_x^2 + h_y^2) / (1 + h_z).
+      const float norm = std::sqrt(norm_squared);
+      return (sum.x() * sum.x() + sum.y() * sum.y()) / (norm * (norm + sum.z()));
+    }
+  }
+  return 2.0f;
 }
 
 float LobeSampler::Pdf(const Vec3f& wi) const {

@@ -20,20 +20,45 @@
 
 namespace brdf {
 
+// What the lobe technique keeps of a lobe for a whole render.
+//
+// Its core: the cone about the lobe's axis (in wi, or in the half vector) outside which the
+// lobe's density falls below kCoreDensity, a thousandth of the cosine technique's peak. The
+// multiple importance sampling weights count the lobe's pdf as zero outside the core (MisPdf),
+// for every technique alike: the weights still sum to one at every direction and each
+// technique still divides by its own true pdf, so the estimate stays unbiased (Veach 1997,
+// §9.2: any weights that sum to one will do), while the light and cosine samples, most of
+// which fall far from a narrow lobe, skip its exponential.
+struct LobeTechnique {
+  static constexpr double kCoreDensity = 1e-3 * kInvPi;
+
+  explicit LobeTechnique(const LobeCoordinates& lobe);
+
+  LobeCoordinates lobe;
+  float core_one_minus_cos = 2.0f;  // 1 - cos(beta) at the core's rim (2: everywhere)
+};
+
 class LobeSampler {
  public:
   // For the outgoing direction `wo` (unit, local frame).
-  LobeSampler(const LobeCoordinates& lobe, const Vec3f& wo);
+  LobeSampler(const LobeTechnique& technique, const Vec3f& wo);
 
   // wi from u in [0, 1)^2; it may lie below the horizon (a half-vector lobe reflects wo).
   Vec3f Sample(float u0, float u1) const;
   // The density of wi in solid angle.
   float Pdf(const Vec3f& wi) const;
+  // The lobe's pdf as the weights count it: Pdf inside the core, 0 outside.
+  float MisPdf(const Vec3f& wi) const {
+    return AxisOneMinusCos(wi) > core_one_minus_cos_ ? 0.0f : Pdf(wi);
+  }
 
   // The largest density of wi the lobe reaches (at its axis, seen from the normal), per sr.
   static double PeakDensity(const LobeCoordinates& lobe);
 
  private:
+  // 1 - cos of the angle between the lobe's axis and wi (or its half vector with wo); 2 where
+  // there is none.
+  float AxisOneMinusCos(const Vec3f& wi) const;
   // (e+1)/(2 pi) (1 - one_minus_cos)^e, keeping the digits of a cosine near 1.
   float PowerCosineDensity(float one_minus_cos) const {
     if (!(one_minus_cos < 1.0f)) return 0.0f;
@@ -43,6 +68,7 @@ class LobeSampler {
   Vec3f SampleAboutAxis(float u0, float u1) const;
 
   LobeCoordinates lobe_;
+  float core_one_minus_cos_;
   Vec3f wo_;
   Vec3 wo_double_;
   float exponent_ = 1.0f, normalization_ = 1.0f, inverse_exponent_plus_one_ = 0.5f;

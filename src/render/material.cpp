@@ -172,8 +172,11 @@ class TabulatedMaterial : public Material {
     int low[3], high[3];
     T t[3];
     for (int d = 0; d < 3; ++d) {
-      const T u = coordinates[d] / T(kRange[d]) * T(kBins) - T(0.5);
-      const int below = static_cast<int>(std::floor(u));
+      // u in [-1/2, kBins - 1/2] for directions above the horizon (NaN directions: -1/2);
+      // truncating u + 1 floors it without a libm call.
+      T u = coordinates[d] / T(kRange[d]) * T(kBins) - T(0.5);
+      u = u >= T(-0.5) ? std::min(u, T(kBins)) : T(-0.5);
+      const int below = static_cast<int>(u + T(1)) - 1;
       t[d] = u - T(below);
       if (d == 2) {
         low[d] = (below + kBins) % kBins;

@@ -36,12 +36,12 @@ RgbF FiniteOrZero(const RgbF& value, int64_t* missing) {
 // time.
 constexpr double kLobeOverCosineDensity = 8.0;
 
-std::optional<LobeCoordinates> LobeTechnique(const Material& material) {
+std::optional<LobeTechnique> ChooseLobeTechnique(const Material& material) {
   const std::optional<LobeCoordinates> lobe = material.SpecularLobe();
   if (!lobe || LobeSampler::PeakDensity(*lobe) < kLobeOverCosineDensity * kInvPi) {
     return std::nullopt;
   }
-  return lobe;
+  return LobeTechnique(*lobe);
 }
 
 // Samples are drawn, looked up and shaded this many at a time: the loops over a batch that
@@ -65,7 +65,7 @@ struct DirectionBatch {
 class EnvironmentEstimator {
  public:
   EnvironmentEstimator(const Material& material, const Environment& environment,
-                       std::optional<LobeCoordinates> lobe, int spp)
+                       std::optional<LobeTechnique> lobe, int spp)
       : material_(material), environment_(environment), lobe_(lobe), spp_(spp) {}
 
   struct Estimate {
@@ -143,14 +143,15 @@ class EnvironmentEstimator {
       Transform(to_local, light_world, &light_local);
 
       for (int k = 0; k < count; ++k) {
+        // The lobe's pdf enters the weights as MisPdf (zero outside its core, lobe_sampler.h).
         RgbF estimate = RgbF::Zero();
         {
           const Vec3f wi(light_local.x[k], light_local.y[k], light_local.z[k]);
           const Environment::Texel& texel = environment_.texel(light_pixel[k]);
           const float pdf = Environment::PdfFloat(texel, light_sin_theta[k]);
           if (wi.z() > 0.0f && pdf > 0.0f) {
-            const float pdf_lobe = lobe ? lobe->Pdf(wi) : 0.0f;
-            estimate += Shade(wi, wo, texel, pdf, {pdf, wi.z() * kInvPiF, pdf_lobe}, missing);
+            const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
+            estimate += Shade(wi, wo, texel, pdf, pdf, {pdf, wi.z() * kInvPiF, pdf_lobe}, missing);
           }
         }
         {
@@ -159,17 +160,19 @@ class EnvironmentEstimator {
             const Environment::Texel& texel = environment_.texel(cosine_pixel[k]);
             const float pdf = wi.z() * kInvPiF;
             const float pdf_light = Environment::PdfFloat(texel, cosine_sin_theta[k]);
-            const float pdf_lobe = lobe ? lobe->Pdf(wi) : 0.0f;
-            estimate += Shade(wi, wo, texel, pdf, {pdf_light, pdf, pdf_lobe}, missing);
+            const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
+            estimate += Shade(wi, wo, texel, pdf, pdf, {pdf_light, pdf, pdf_lobe}, missing);
           }
         }
         if (lobe) {
           const Vec3f wi(lobe_local.x[k], lobe_local.y[k], lobe_local.z[k]);
-          const float pdf = wi.z() > 0.0f ? lobe->Pdf(wi) : 0.0f;
-          if (pdf > 0.0f) {
+          const float weighted = wi.z() > 0.0f ? lobe->MisPdf(wi) : 0.0f;
+          if (weighted > 0.0f) {
             const Environment::Texel& texel = environment_.texel(lobe_pixel[k]);
             const float pdf_light = Environment::PdfFloat(texel, lobe_sin_theta[k]);
-            estimate += Shade(wi, wo, texel, pdf, {pdf_light, wi.z() * kInvPiF, pdf}, missing);
+            // Inside the core MisPdf is the pdf itself.
+            estimate += Shade(wi, wo, texel, weighted, weighted,
+                              {pdf_light, wi.z() * kInvPiF, weighted}, missing);
           }
         }
         const Rgb value = estimate.cast<double>();
@@ -207,20 +210,21 @@ class EnvironmentEstimator {
     }
   }
 
-  // f L cos(theta_i) p_t / (p_light^2 + p_cosine^2 + p_lobe^2): the sample of the technique
-  // whose pdf is p_t (one of the three) under the power heuristic; an unused technique's pdf
-  // is 0.
-  RgbF Shade(const Vec3f& wi, const Vec3f& wo, const Environment::Texel& texel, float pdf_technique,
-             const std::array<float, 3>& pdfs, int64_t* missing) const {
-    const float sum_squares = pdfs[0] * pdfs[0] + pdfs[1] * pdfs[1] + pdfs[2] * pdfs[2];
+  // f L cos(theta_i) w_t / p_t with the power heuristic's w_t = q_t^2 / sum q^2 over the
+  // weights' pdfs q = (q_light, q_cosine, q_lobe) (an unused technique's is 0): the sample of
+  // technique t, drawn with pdf p_t, whose weight pdf is q_t.
+  RgbF Shade(const Vec3f& wi, const Vec3f& wo, const Environment::Texel& texel, float pdf,
+             float weight_pdf, const std::array<float, 3>& weight_pdfs, int64_t* missing) const {
+    const float sum_squares = weight_pdfs[0] * weight_pdfs[0] + weight_pdfs[1] * weight_pdfs[1] +
+                              weight_pdfs[2] * weight_pdfs[2];
     const RgbF f = FiniteOrZero(material_.EvalFloat(wi, wo), missing);
     const RgbF radiance(texel.rgb[0], texel.rgb[1], texel.rgb[2]);
-    return f * radiance * (wi.z() * pdf_technique / sum_squares);
+    return f * radiance * (wi.z() * (weight_pdf / sum_squares) * (weight_pdf / pdf));
   }
 
   const Material& material_;
   const Environment& environment_;
-  std::optional<LobeCoordinates> lobe_;
+  std::optional<LobeTechnique> lobe_;
   int spp_;
 };
 
@@ -268,7 +272,7 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
       environment == nullptr
           ? std::nullopt
           : std::optional<EnvironmentEstimator>(std::in_place, material, *environment,
-                                                LobeTechnique(material), options.spp);
+                                                ChooseLobeTechnique(material), options.spp);
 
   tbb::parallel_for(0, size, [&](int y) {
     int64_t row_pixels = 0, row_missing = 0;
