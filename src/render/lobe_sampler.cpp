@@ -17,7 +17,13 @@ LobeTechnique::LobeTechnique(const LobeCoordinates& lobe_coordinates) : lobe(lob
     }
     return;
   }
-  // A distribution of its own: bisect in cos(beta) (the rule need not be exact, only fixed).
+  // A distribution of its own: its table, then bisect in cos(beta) for the core (the rule
+  // need not be exact, only fixed).
+  density_table.resize(kTableSize);
+  for (int i = 0; i < kTableSize; ++i) {
+    const double root = static_cast<double>(i) / (kTableSize - 1);
+    density_table[i] = static_cast<float>(LobeDensity(lobe, 1.0 - root * root));
+  }
   if (LobeDensity(lobe, 1e-6) >= kCoreDensity) return;
   double inside = 1.0, outside = 1e-6;
   for (int step = 0; step < 60; ++step) {
@@ -28,11 +34,19 @@ LobeTechnique::LobeTechnique(const LobeCoordinates& lobe_coordinates) : lobe(lob
 }
 
 LobeSampler::LobeSampler(const LobeTechnique& technique, const Vec3f& wo)
-    : lobe_(technique.lobe),
+    : technique_(technique),
+      lobe_(technique.lobe),
       core_one_minus_cos_(technique.core_one_minus_cos),
       wo_(wo),
       wo_double_(wo.cast<double>()) {
   const LobeCoordinates& lobe = technique.lobe;
+  if (lobe.distribution != nullptr && lobe.distribution->visible_density != nullptr &&
+      wo.z() > 0.0f) {
+    // At h = +z (wi the mirror of wo): pdf = G1 D(1) / (4 cos theta_o) = scale density(1).
+    const Vec3 mirror = MirrorDirection(wo_double_);
+    visible_scale_ =
+        static_cast<float>(StrategyPdf(lobe, wo_double_, mirror) / LobeDensity(lobe, 1.0));
+  }
   exponent_ = static_cast<float>(lobe.exponent);
   normalization_ = static_cast<float>((lobe.exponent + 1.0) * 0.5 * kInvPi);
   inverse_exponent_plus_one_ = static_cast<float>(1.0 / (lobe.exponent + 1.0));
@@ -85,6 +99,19 @@ float LobeSampler::AxisOneMinusCos(const Vec3f& wi) const {
     }
   }
   return 2.0f;
+}
+
+float LobeSampler::MisPdf(const Vec3f& wi) const {
+  const float one_minus_cos = AxisOneMinusCos(wi);
+  if (one_minus_cos > core_one_minus_cos_) return 0.0f;
+  if (lobe_.distribution == nullptr) return Pdf(wi);
+  // Half vector (the distributions are microfacet normals).
+  const Vec3f h = (wi + wo_).normalized();
+  const float wo_dot_h = wo_.dot(h);
+  if (!(h.z() > 0.0f) || !(wo_dot_h > 0.0f)) return 0.0f;
+  const float density = technique_.TabulatedDensity(one_minus_cos);
+  if (lobe_.distribution->visible_density != nullptr) return visible_scale_ * density / h.z();
+  return density / (4.0f * wo_dot_h);
 }
 
 float LobeSampler::Pdf(const Vec3f& wi) const {

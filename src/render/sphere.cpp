@@ -167,12 +167,12 @@ class EnvironmentEstimator {
         if (lobe) {
           const Vec3f wi(lobe_local.x[k], lobe_local.y[k], lobe_local.z[k]);
           const float weighted = wi.z() > 0.0f ? lobe->MisPdf(wi) : 0.0f;
-          if (weighted > 0.0f) {
+          const float pdf = weighted > 0.0f ? lobe->Pdf(wi) : 0.0f;
+          if (pdf > 0.0f) {
             const Environment::Texel& texel = environment_.texel(lobe_pixel[k]);
             const float pdf_light = Environment::PdfFloat(texel, lobe_sin_theta[k]);
-            // Inside the core MisPdf is the pdf itself.
-            estimate += Shade(wi, wo, texel, weighted, weighted,
-                              {pdf_light, wi.z() * kInvPiF, weighted}, missing);
+            estimate += Shade(wi, wo, texel, pdf, weighted, {pdf_light, wi.z() * kInvPiF, weighted},
+                              missing);
           }
         }
         const Rgb value = estimate.cast<double>();
