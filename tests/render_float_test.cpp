@@ -77,7 +77,8 @@ TEST(RenderFloat, LobeSamplerDrawsItsOwnPdfWhichIsStrategyPdf) {
   const Vec3 wo_double = SphericalDirection(0.6, 0.4);
   const Vec3f wo = wo_double.cast<float>();
   for (const auto& [name, lobe] : Lobes()) {
-    const LobeSampler sampler(LobeTechnique(lobe), wo);
+    const LobeTechnique technique(lobe);
+    const LobeSampler sampler(technique, wo);
     std::mt19937_64 random(7);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     // The float pdf is energy/monte_carlo.cpp's StrategyPdf.
@@ -117,7 +118,8 @@ TEST(RenderFloat, LobePdfIntegratesToOneOverTheSphere) {
         lobe.exponent > 1000.0) {
       continue;  // too sharp for uniform sampling; the chi-square test covers it
     }
-    const LobeSampler sampler(LobeTechnique(lobe), wo);
+    const LobeTechnique technique(lobe);
+    const LobeSampler sampler(technique, wo);
     double integral = 0.0;
     double squares = 0.0;
     const int n = 1000000;
@@ -138,7 +140,8 @@ TEST(RenderFloat, MisPdfIsThePdfInsideTheCoreAndNegligibleOutside) {
   const Vec3f wo = SphericalDirection(0.5, 1.0).cast<float>();
   std::mt19937_64 random(13);
   for (const auto& [name, lobe] : Lobes()) {
-    const LobeSampler sampler(LobeTechnique(lobe), wo);
+    const LobeTechnique technique(lobe);
+    const LobeSampler sampler(technique, wo);
     for (int k = 0; k < 20000; ++k) {
       const Vec3f wi = UniformSphere(random).cast<float>();
       const float pdf = sampler.Pdf(wi), weighted = sampler.MisPdf(wi);

@@ -57,8 +57,10 @@ struct LobeTechnique {
 
 class LobeSampler {
  public:
-  // For the outgoing direction `wo` (unit, local frame).
+  // For the outgoing direction `wo` (unit, local frame); keeps a reference to `technique`,
+  // which must outlive the sampler.
   LobeSampler(const LobeTechnique& technique, const Vec3f& wo);
+  LobeSampler(LobeTechnique&& technique, const Vec3f& wo) = delete;
 
   // wi from u in [0, 1)^2; it may lie below the horizon (a half-vector lobe reflects wo).
   Vec3f Sample(float u0, float u1) const;
