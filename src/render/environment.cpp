@@ -10,9 +10,17 @@
 #include "hdr/image_files.h"
 
 namespace brdf {
-Environment::Environment(Image image) : width_(image.width), height_(image.height) {
+Environment::Environment(Image image)
+    : width_(image.width),
+      height_(image.height),
+      row_scale_(static_cast<float>(image.height / kPi)),
+      column_scale_(static_cast<float>(image.width / (2.0 * kPi))) {
   const int width = width_, height = height_;
   const int64_t count = int64_t{width} * height;
+  if (count >= (int64_t{1} << 32)) {
+    throw UsageError("environment of " + std::to_string(width) + "x" + std::to_string(height) +
+                     " pixels: at most 2^32 pixels are supported");
+  }
   std::vector<double> weight(count);
   double total = 0.0;
   for (int r = 0; r < height; ++r) {
@@ -36,11 +44,11 @@ Environment::Environment(Image image) : width_(image.width), height_(image.heigh
   for (int64_t i = 0; i < count; ++i) {
     for (int c = 0; c < 3; ++c) texels_[i].rgb[c] = image.rgba[i * Image::kChannels + c];
     texels_[i].density_uv = static_cast<float>(weight[i] / total * count);
+    texels_[i].alias = static_cast<uint32_t>(i);
   }
 
   // Vose's construction: scaled probabilities count * p_i split into those below 1 ("small")
   // and the rest; each small entry is topped up from a large one, which becomes its alias.
-  slots_.resize(count);
   std::vector<double> scaled(count);
   std::vector<uint32_t> small, large;
   for (int64_t i = 0; i < count; ++i) {
@@ -50,8 +58,8 @@ Environment::Environment(Image image) : width_(image.width), height_(image.heigh
   while (!small.empty() && !large.empty()) {
     const uint32_t less = small.back(), more = large.back();
     small.pop_back();
-    slots_[less].keep = static_cast<float>(scaled[less]);
-    slots_[less].alias = more;
+    texels_[less].keep = static_cast<float>(scaled[less]);
+    texels_[less].alias = more;
     scaled[more] -= 1.0 - scaled[less];
     if (scaled[more] < 1.0) {
       large.pop_back();
@@ -59,8 +67,8 @@ Environment::Environment(Image image) : width_(image.width), height_(image.heigh
     }
   }
   // What remains is 1 up to rounding.
-  for (uint32_t i : large) slots_[i] = {1.0f, i};
-  for (uint32_t i : small) slots_[i] = {1.0f, i};
+  for (uint32_t i : large) texels_[i].keep = 1.0f, texels_[i].alias = i;
+  for (uint32_t i : small) texels_[i].keep = 1.0f, texels_[i].alias = i;
 }
 
 Environment Environment::Uniform(const Rgb& radiance) {
@@ -134,7 +142,7 @@ Environment::Sample Environment::SampleDirection(double u1, double u2) const {
   const int64_t slot = std::min<int64_t>(static_cast<int64_t>(slot_position), count - 1);
   double fraction = slot_position - slot;
   int64_t pixel = slot;
-  const AliasSlot& entry = slots_[slot];
+  const Texel& entry = texels_[slot];
   if (fraction < entry.keep) {
     fraction /= entry.keep;
   } else {
@@ -153,6 +161,23 @@ Environment::Sample Environment::SampleDirection(double u1, double u2) const {
   sample.radiance = Rgb(texel.rgb[0], texel.rgb[1], texel.rgb[2]);
   sample.pdf = sin_theta > 0.0 ? texel.density_uv / (2.0 * kPi * kPi * sin_theta) : 0.0;
   return sample;
+}
+
+uint32_t Environment::DrawFloat(uint32_t slot, uint64_t bits, float v_in_pixel, float* u,
+                                float* v) const {
+  // Selects, not a branch: which way a draw goes is random (render/float_math.h).
+  const float below = static_cast<float>(bits & 0xffffff) * 0x1.0p-24f;
+  const Texel& entry = texels_[slot];
+  const bool aliased = !(below < entry.keep);
+  const float taken = static_cast<float>(aliased);
+  const uint32_t pixel = aliased ? entry.alias : slot;
+  const float fraction =
+      (below - taken * entry.keep) / ((1.0f - taken) * entry.keep + taken * (1.0f - entry.keep));
+  const uint32_t row = pixel / static_cast<uint32_t>(width_);
+  const uint32_t column = pixel - row * static_cast<uint32_t>(width_);
+  *u = (static_cast<float>(column) + std::min(fraction, 1.0f)) / width_;
+  *v = (static_cast<float>(row) + v_in_pixel) / height_;
+  return pixel;
 }
 
 }  // namespace brdf

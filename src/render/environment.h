@@ -17,12 +17,15 @@
 //   pdf(omega) = p(u, v) / (2 pi^2 sin theta_e)   (dω = 2π² sinθ du dv).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "core/vec.h"
 #include "hdr/image.h"
+#include "render/float_math.h"
 
 namespace brdf {
 
@@ -52,23 +55,73 @@ class Environment {
   int width() const { return width_; }
   int height() const { return height_; }
 
+  // The same distribution in single precision, for the renderer's hot loop (render/sphere.cpp),
+  // split so that the caller can prefetch each table entry before it is read: the draws and
+  // lookups of a pixel's samples are independent, and waiting on them one at a time was half of
+  // a render.
+  //
+  // Each pixel's radiance, its density and its alias-table slot share one 24-byte entry, so that
+  // a lookup touches one cache line and a draw one or two (the alias, when taken, is one of the
+  // map's heavy pixels, which the many draws keep in cache).
+  struct Texel {
+    float rgb[3];
+    float density_uv;    // p(u, v) = W H w(r, c) / sum w
+    float keep = 1.0f;   // the probability that slot i yields pixel i ...
+    uint32_t alias = 0;  // ... and otherwise this pixel
+  };
+  // The slot a 64-bit random word picks: its top 32 bits scaled to the pixel count.
+  uint32_t SlotOf(uint64_t bits) const {
+    return static_cast<uint32_t>(((bits >> 32) * static_cast<uint64_t>(texels_.size())) >> 32);
+  }
+  // The pixel that slot `slot` yields for the word `bits` (its low 24 bits, independent of the
+  // top 32 that chose the slot, decide between the slot and its alias) and, in `*u` and `*v`,
+  // the image coordinates in [0, 1] of the point drawn across it (`v_in_pixel` places it down
+  // the pixel). The direction is then DirectionAt(u, v).
+  uint32_t DrawFloat(uint32_t slot, uint64_t bits, float v_in_pixel, float* u, float* v) const;
+  // World direction (x, y, z) at image coordinates (u, v) (theta = pi v, phi = 2 pi u), and the
+  // sine of its polar angle. Inline, without branches, so that a loop over a batch vectorizes.
+  static void DirectionAt(float u, float v, float* x, float* y, float* z, float* sin_theta) {
+    float cos_theta, sin_phi, cos_phi;
+    SinCosTurn(0.5f * v, sin_theta, &cos_theta);
+    SinCosTurn(u, &sin_phi, &cos_phi);
+    *x = *sin_theta * sin_phi;
+    *y = cos_theta;
+    *z = -*sin_theta * cos_phi;
+  }
+  // The pixel containing world direction (x, y, z) (unit), and the sine of its polar angle;
+  // inline and without branches, likewise.
+  uint32_t LocateFloat(float x, float y, float z, float* sin_theta) const {
+    const float cos_theta = std::min(std::max(y, -1.0f), 1.0f);
+    // (1 - c)(1 + c) keeps its digits near the poles, where 1 - c^2 would cancel.
+    *sin_theta = std::sqrt((1.0f - cos_theta) * (1.0f + cos_theta));
+    const float theta = Atan2(*sin_theta, cos_theta);
+    float phi = Atan2(x, -z);
+    phi += static_cast<float>(phi < 0.0f) * (2.0f * kPiF);
+    const int row = std::min(std::max(static_cast<int>(theta * row_scale_), 0), height_ - 1);
+    const int column = std::min(std::max(static_cast<int>(phi * column_scale_), 0), width_ - 1);
+    return static_cast<uint32_t>(row * width_ + column);
+  }
+  const Texel& texel(uint32_t pixel) const { return texels_[pixel]; }
+  // Both ends: an entry may straddle two cache lines.
+  void Prefetch(uint32_t pixel) const {
+    const char* entry = reinterpret_cast<const char*>(&texels_[pixel]);
+    __builtin_prefetch(entry);
+    __builtin_prefetch(entry + sizeof(Texel) - 1);
+  }
+  // pdf(omega) per steradian of a direction in `texel` at polar angle sine `sin_theta`.
+  static float PdfFloat(const Texel& texel, float sin_theta) {
+    return sin_theta > 0.0f ? texel.density_uv * kInverseTwoPiSquared / sin_theta : 0.0f;
+  }
+
  private:
+  static constexpr float kInverseTwoPiSquared = static_cast<float>(1.0 / (2.0 * kPi * kPi));
+
   // Pixel containing `omega`, and the sine of its polar angle.
   void Locate(const Vec3& omega, int* row, int* column, double* sin_theta) const;
 
-  // Packed so that a lookup or a draw touches one cache line per table: the render is bound
-  // by these random accesses.
-  struct Texel {
-    float rgb[3];
-    float density_uv;  // p(u, v) = W H w(r, c) / sum w
-  };
-  struct AliasSlot {
-    float keep = 1.0f;   // probability that slot i yields pixel i ...
-    uint32_t alias = 0;  // ... and otherwise this pixel
-  };
   int width_ = 0, height_ = 0;
+  float row_scale_ = 0.0f, column_scale_ = 0.0f;  // H / pi, W / (2 pi)
   std::vector<Texel> texels_;
-  std::vector<AliasSlot> slots_;
 };
 
 }  // namespace brdf

@@ -15,19 +15,43 @@
 namespace brdf {
 namespace {
 
+// A model's formula in float (its templated Eval, models/common.h), for EvalFloat.
+using FloatModelEval = RgbF (*)(const float* params, const Vec3f& wi, const Vec3f& wo);
+template <typename M>
+RgbF EvalModelInFloat(const float* params, const Vec3f& wi, const Vec3f& wo) {
+  return M::template Eval<float>(params, wi, wo);
+}
+
+// Float keeps a relative rounding error of about e 2^-24 in cos^e (the cosine's last bit,
+// raised to the power e); at most 1e-3, a thousandth of a sample's own noise, float serves.
+// Sharper lobes (e > 16,777) evaluate in double.
+constexpr double kFloatExponentLimit = 1e-3 * 0x1.0p24;
+
 class ModelMaterial : public Material {
  public:
   explicit ModelMaterial(Model model) : model_(std::move(model)) {
     // The model knows its own lobe: frame and density (models/lobe.h).
     if (model_.info().has_lobe() && model_.LobeWeight().maxCoeff() > 0.0) lobe_ = model_.Lobe();
+    params_float_.assign(model_.params().begin(), model_.params().end());
+    if (model_.info().equivalent_exponent(model_.params().data()) <= kFloatExponentLimit) {
+      eval_float_ = VisitModelType(model_.name(), [](auto model_type) -> FloatModelEval {
+        return &EvalModelInFloat<decltype(model_type)>;
+      });
+    }
   }
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override { return model_.Eval(wi, wo); }
+  RgbF EvalFloat(const Vec3f& wi, const Vec3f& wo) const override {
+    if (eval_float_ == nullptr) return Material::EvalFloat(wi, wo);
+    return eval_float_(params_float_.data(), wi, wo);
+  }
   std::string Describe() const override { return model_.ToString(); }
   std::optional<LobeCoordinates> SpecularLobe() const override { return lobe_; }
 
  private:
   Model model_;
   std::optional<LobeCoordinates> lobe_;
+  std::vector<float> params_float_;
+  FloatModelEval eval_float_ = nullptr;
 };
 
 // Dense tabulated data (MERL, RGL-EPFL) through the reader's evaluator (Measurement::tabulated,
@@ -73,41 +97,40 @@ class TabulatedMaterial : public Material {
       cells_[cell] = measured.brdf(wi, wo).value;
     });
     lobe_ = EstimateLobe();
+    cells_float_.reserve(cells_.size());
+    for (const Rgb& cell : cells_) cells_float_.push_back(cell.cast<float>());
   }
 
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override {
     if (wi.z() <= 0.0 || wo.z() <= 0.0) return Rgb::Zero();
     const HalfDiff hd = ToHalfDiff(wi, wo);
     const double coordinates[3] = {hd.theta_h, hd.theta_d, std::fmod(hd.phi_d + 2 * kPi, kPi)};
-    // Trilinear between cell centres (nearest-cell lookups drew the grid as rings around a
-    // highlight). theta_h and theta_d clamp at the ends; phi_d is periodic with period pi.
-    int low[3], high[3];
-    double t[3];
-    for (int d = 0; d < 3; ++d) {
-      const double u = coordinates[d] / kRange[d] * kBins - 0.5;
-      const int below = static_cast<int>(std::floor(u));
-      t[d] = u - below;
-      if (d == 2) {
-        low[d] = (below + kBins) % kBins;
-        high[d] = (below + 1) % kBins;
-      } else {
-        low[d] = std::clamp(below, 0, kBins - 1);
-        high[d] = std::clamp(below + 1, 0, kBins - 1);
-      }
-      if (!(t[d] >= 0.0 && t[d] <= 1.0)) t[d] = 0.0;  // NaN directions: any corner
-    }
-    Rgb value = Rgb::Zero();
-    for (int corner = 0; corner < 8; ++corner) {
-      double weight = 1.0;
-      int index[3];
-      for (int d = 0; d < 3; ++d) {
-        const bool upper = (corner >> d) & 1;
-        index[d] = upper ? high[d] : low[d];
-        weight *= upper ? t[d] : 1.0 - t[d];
-      }
-      if (weight > 0.0) value += weight * cells_[(index[0] * kBins + index[1]) * kBins + index[2]];
-    }
-    return value;
+    return Interpolate(coordinates, cells_);
+  }
+
+  // ToHalfDiff (core/angles.h) in float, written out: with h = (sin theta_h cos phi_h,
+  // sin theta_h sin phi_h, cos theta_h), rotating wi by -phi_h about z and then by -theta_h
+  // about y expresses it in the frame (Rz(phi_h) Ry(theta_h) x, Rz(phi_h) y, h).
+  RgbF EvalFloat(const Vec3f& wi, const Vec3f& wo) const override {
+    if (!(wi.z() > 0.0f) || !(wo.z() > 0.0f)) return RgbF::Zero();
+    const Vec3f sum = wi + wo;
+    const Vec3f h = sum / std::sqrt(sum.squaredNorm());
+    const float sin_theta_h = std::sqrt(h.x() * h.x() + h.y() * h.y());
+    const bool at_pole = !(sin_theta_h > 0.0f);  // phi_h = 0, as Phi() gives
+    const float cos_phi_h = at_pole ? 1.0f : h.x() / sin_theta_h;
+    const float sin_phi_h = at_pole ? 0.0f : h.y() / sin_theta_h;
+    const float along_phi_h = cos_phi_h * wi.x() + sin_phi_h * wi.y();
+    const float diff_x = h.z() * along_phi_h - sin_theta_h * wi.z();
+    const float diff_y = cos_phi_h * wi.y() - sin_phi_h * wi.x();
+    const float diff_z = wi.dot(h);
+    // [-pi, pi], folded into [0, pi) by reciprocity (selects: render/float_math.h).
+    float phi_d = Atan2(diff_y, diff_x);
+    phi_d += static_cast<float>(phi_d < 0.0f) * kPiF;
+    phi_d -= static_cast<float>(phi_d >= kPiF) * kPiF;
+    const float coordinates[3] = {Atan2(sin_theta_h, h.z()),
+                                  Atan2(std::sqrt(diff_x * diff_x + diff_y * diff_y), diff_z),
+                                  phi_d};
+    return Interpolate(coordinates, cells_float_);
   }
   std::string Describe() const override { return description_; }
   std::optional<LobeCoordinates> SpecularLobe() const override { return lobe_; }
@@ -141,8 +164,46 @@ class TabulatedMaterial : public Material {
     return LobeCoordinates{LobeFrame::kHalfVector, exponent};
   }
 
+  // Trilinear between cell centres (nearest-cell lookups drew the grid as rings around a
+  // highlight) at (theta_h, theta_d, phi_d in [0, pi)). theta_h and theta_d clamp at the ends;
+  // phi_d is periodic with period pi.
+  template <typename T>
+  static RgbT<T> Interpolate(const T coordinates[3], const std::vector<RgbT<T>>& cells) {
+    int low[3], high[3];
+    T t[3];
+    for (int d = 0; d < 3; ++d) {
+      // u in [-1/2, kBins - 1/2] for directions above the horizon (NaN directions: -1/2);
+      // truncating u + 1 floors it without a libm call.
+      T u = coordinates[d] / T(kRange[d]) * T(kBins) - T(0.5);
+      u = u >= T(-0.5) ? std::min(u, T(kBins)) : T(-0.5);
+      const int below = static_cast<int>(u + T(1)) - 1;
+      t[d] = u - T(below);
+      if (d == 2) {
+        low[d] = (below + kBins) % kBins;
+        high[d] = (below + 1) % kBins;
+      } else {
+        low[d] = std::clamp(below, 0, kBins - 1);
+        high[d] = std::clamp(below + 1, 0, kBins - 1);
+      }
+      if (!(t[d] >= T(0) && t[d] <= T(1))) t[d] = T(0);  // NaN directions: any corner
+    }
+    RgbT<T> value = RgbT<T>::Zero();
+    for (int corner = 0; corner < 8; ++corner) {
+      T weight = T(1);
+      int index[3];
+      for (int d = 0; d < 3; ++d) {
+        const bool upper = (corner >> d) & 1;
+        index[d] = upper ? high[d] : low[d];
+        weight *= upper ? t[d] : T(1) - t[d];
+      }
+      if (weight > T(0)) value += weight * cells[(index[0] * kBins + index[1]) * kBins + index[2]];
+    }
+    return value;
+  }
+
   std::string description_;
   std::vector<Rgb> cells_;
+  std::vector<RgbF> cells_float_;  // the same, for EvalFloat
   std::optional<LobeCoordinates> lobe_;
 };
 

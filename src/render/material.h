@@ -20,6 +20,7 @@
 #include "core/vec.h"
 #include "energy/integrand.h"
 #include "models/registry.h"
+#include "render/float_math.h"
 
 namespace brdf {
 
@@ -28,6 +29,13 @@ class Material {
   virtual ~Material() = default;
   // f(wi, wo) in sr^-1 in the local shading frame (DESIGN §1); NaN where the data has no value.
   virtual Rgb Eval(const Vec3& wi, const Vec3& wo) const = 0;
+  // The same in single precision, for the renderer's hot loop (render/sphere.cpp): models
+  // evaluate their templated formula in float unless the lobe is too sharp for it (see
+  // material.cpp), the tabulated interpolant looks up a float table; the default converts to
+  // Eval.
+  virtual RgbF EvalFloat(const Vec3f& wi, const Vec3f& wo) const {
+    return Eval(wi.cast<double>(), wo.cast<double>()).cast<float>();
+  }
   // What it is, for the summary line: a model string or "FILE (format, interpolation)".
   virtual std::string Describe() const = 0;
   // The specular lobe the renderer draws directions from, besides the environment and the

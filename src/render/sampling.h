@@ -19,6 +19,12 @@ class PixelRandom {
       : generator_(SplitMix64Mix(seed ^ SplitMix64Mix(pixel + 1))) {}
   // Uniform in [0, 1), 53 random bits.
   double Uniform() { return generator_.Uniform(); }
+  // Uniform in [0, 1), 24 random bits: every value a float holds exactly (the hot loop's warps
+  // are in float, render/float_math.h).
+  float UniformFloat() { return static_cast<float>(generator_.Next() >> 40) * 0x1.0p-24f; }
+  // 64 random bits, for a draw that needs more than a float's resolution (an environment pixel
+  // out of millions, and the point inside it).
+  uint64_t Bits() { return generator_.Next(); }
 
  private:
   SplitMix64 generator_;

@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -9,25 +11,222 @@
 #include "core/colour.h"
 #include "core/errors.h"
 #include "core/progress.h"
-#include "energy/monte_carlo.h"
+#include "render/float_math.h"
+#include "render/lobe_sampler.h"
 #include "render/sampling.h"
 
 namespace brdf {
 namespace {
-
-// Power heuristic with exponent 2 (Veach & Guibas 1995) for one sample of each technique; a
-// technique that is not used has pdf 0.
-double PowerHeuristic(double pdf_this, double pdf_other, double pdf_third = 0.0) {
-  const double a = pdf_this * pdf_this;
-  const double sum = a + pdf_other * pdf_other + pdf_third * pdf_third;
-  return sum > 0.0 ? a / sum : 0.0;
-}
 
 Rgb FiniteOrZero(const Rgb& value, int64_t* missing) {
   if (value.allFinite()) return value;
   ++*missing;
   return Rgb::Zero();
 }
+RgbF FiniteOrZero(const RgbF& value, int64_t* missing) {
+  if (value.allFinite()) return value;
+  ++*missing;
+  return RgbF::Zero();
+}
+
+// The lobe technique earns its cost only where the lobe is narrower than the cosine technique
+// resolves: where the lobe's largest density of wi exceeds the cosine's, 1/pi, by this factor
+// (measured in docs/performance.md: below it the lobe's samples cost more time than the noise
+// they remove). Any set of techniques keeps the estimate unbiased; this only trades noise for
+// time.
+constexpr double kLobeOverCosineDensity = 8.0;
+
+std::optional<LobeTechnique> ChooseLobeTechnique(const Material& material) {
+  const std::optional<LobeCoordinates> lobe = material.SpecularLobe();
+  if (!lobe || LobeSampler::PeakDensity(*lobe) < kLobeOverCosineDensity * kInvPi) {
+    return std::nullopt;
+  }
+  return LobeTechnique(*lobe);
+}
+
+// Samples are drawn, looked up and shaded this many at a time: the loops over a batch that
+// compute directions and environment pixels vectorize (four floats at a time), and the
+// environment entries of a batch are prefetched before the first is read, so that their cache
+// misses overlap.
+constexpr int kBatch = 16;
+
+// Directions of a batch, one array per coordinate (so that loops over them vectorize).
+struct DirectionBatch {
+  alignas(16) float x[kBatch];
+  alignas(16) float y[kBatch];
+  alignas(16) float z[kBatch];
+};
+
+// The environment term of one pixel (sphere.h) in single precision. Per sample s, in this
+// order: a light direction from the environment's distribution (64 random bits and a float),
+// a cosine-distributed one (two floats), and, when the lobe technique is on, one from the lobe
+// (two floats); combined with the power heuristic, whose weight p_t^2 / sum p^2 divided by the
+// technique's own pdf p_t is p_t / sum p^2.
+class EnvironmentEstimator {
+ public:
+  EnvironmentEstimator(const Material& material, const Environment& environment,
+                       std::optional<LobeTechnique> lobe, int spp)
+      : material_(material), environment_(environment), lobe_(lobe), spp_(spp) {}
+
+  struct Estimate {
+    Rgb radiance = Rgb::Zero();
+    double luminance_std_error = 0.0;
+  };
+  Estimate Pixel(const Frame& frame, uint64_t seed, uint64_t pixel, int64_t* missing) const {
+    Eigen::Matrix3f to_local;
+    to_local.row(0) = frame.x.cast<float>();
+    to_local.row(1) = frame.y.cast<float>();
+    to_local.row(2) = frame.z.cast<float>();
+    const Vec3f wo = to_local.col(2);  // the viewer, +z in the world
+    std::optional<LobeSampler> lobe;
+    if (lobe_) lobe.emplace(*lobe_, wo);
+    PixelRandom random(seed, pixel);
+
+    // Zeroed: a batch's unused lanes must hold finite numbers.
+    uint64_t light_bits[kBatch] = {};
+    alignas(16) float light_v_in_pixel[kBatch] = {}, light_u[kBatch] = {}, light_v[kBatch] = {};
+    alignas(16) float light_sin_theta[kBatch] = {}, cosine_sin_theta[kBatch] = {};
+    alignas(16) float cosine_u0[kBatch] = {}, cosine_u1[kBatch] = {}, lobe_sin_theta[kBatch] = {};
+    uint32_t light_pixel[kBatch] = {}, cosine_pixel[kBatch] = {}, lobe_pixel[kBatch] = {};
+    DirectionBatch light_world = {}, light_local = {}, cosine_local = {}, cosine_world = {},
+                   lobe_local = {}, lobe_world = {};
+    Rgb sum = Rgb::Zero();
+    double luminance_sum = 0.0, luminance_squares = 0.0;
+    for (int first = 0; first < spp_; first += kBatch) {
+      const int count = std::min(kBatch, spp_ - first);
+      // Draws in separate statements: argument evaluation order is unspecified, and the image
+      // must not depend on the compiler. The loops below run over the whole batch (their lanes
+      // beyond `count` hold stale numbers and are not used), so that they vectorize.
+      for (int k = 0; k < count; ++k) {
+        light_bits[k] = random.Bits();
+        light_v_in_pixel[k] = random.UniformFloat();
+        environment_.Prefetch(environment_.SlotOf(light_bits[k]));
+        cosine_u0[k] = random.UniformFloat();
+        cosine_u1[k] = random.UniformFloat();
+        if (lobe) {
+          const float w0 = random.UniformFloat();
+          const float w1 = random.UniformFloat();
+          const Vec3f wi = lobe->Sample(w0, w1);
+          lobe_local.x[k] = wi.x();
+          lobe_local.y[k] = wi.y();
+          lobe_local.z[k] = wi.z();
+        }
+      }
+      // SampleCosineHemisphere (core/sampling.h) in float: the polar map.
+      for (int k = 0; k < kBatch; ++k) {
+        const float radius = std::sqrt(cosine_u0[k]);
+        float sin_phi, cos_phi;
+        SinCosTurn(cosine_u1[k], &sin_phi, &cos_phi);
+        cosine_local.x[k] = radius * cos_phi;
+        cosine_local.y[k] = radius * sin_phi;
+        cosine_local.z[k] = std::sqrt(std::max(0.0f, 1.0f - cosine_u0[k]));
+      }
+      Transform(to_local.transpose(), cosine_local, &cosine_world);
+      Locate(cosine_world, cosine_pixel, cosine_sin_theta);
+      if (lobe) {
+        Transform(to_local.transpose(), lobe_local, &lobe_world);
+        Locate(lobe_world, lobe_pixel, lobe_sin_theta);
+      }
+      for (int k = 0; k < count; ++k) {
+        environment_.Prefetch(cosine_pixel[k]);
+        if (lobe) environment_.Prefetch(lobe_pixel[k]);
+      }
+      for (int k = 0; k < count; ++k) {
+        light_pixel[k] = environment_.DrawFloat(environment_.SlotOf(light_bits[k]), light_bits[k],
+                                                light_v_in_pixel[k], &light_u[k], &light_v[k]);
+        environment_.Prefetch(light_pixel[k]);
+      }
+      for (int k = 0; k < kBatch; ++k) {
+        Environment::DirectionAt(light_u[k], light_v[k], &light_world.x[k], &light_world.y[k],
+                                 &light_world.z[k], &light_sin_theta[k]);
+      }
+      Transform(to_local, light_world, &light_local);
+
+      for (int k = 0; k < count; ++k) {
+        // The lobe's pdf enters the weights as MisPdf (zero outside its core, lobe_sampler.h).
+        RgbF estimate = RgbF::Zero();
+        {
+          const Vec3f wi(light_local.x[k], light_local.y[k], light_local.z[k]);
+          const Environment::Texel& texel = environment_.texel(light_pixel[k]);
+          const float pdf = Environment::PdfFloat(texel, light_sin_theta[k]);
+          if (wi.z() > 0.0f && pdf > 0.0f) {
+            const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
+            estimate += Shade(wi, wo, texel, pdf, pdf, {pdf, wi.z() * kInvPiF, pdf_lobe}, missing);
+          }
+        }
+        {
+          const Vec3f wi(cosine_local.x[k], cosine_local.y[k], cosine_local.z[k]);
+          if (wi.z() > 0.0f) {
+            const Environment::Texel& texel = environment_.texel(cosine_pixel[k]);
+            const float pdf = wi.z() * kInvPiF;
+            const float pdf_light = Environment::PdfFloat(texel, cosine_sin_theta[k]);
+            const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
+            estimate += Shade(wi, wo, texel, pdf, pdf, {pdf_light, pdf, pdf_lobe}, missing);
+          }
+        }
+        if (lobe) {
+          const Vec3f wi(lobe_local.x[k], lobe_local.y[k], lobe_local.z[k]);
+          const float weighted = wi.z() > 0.0f ? lobe->MisPdf(wi) : 0.0f;
+          const float pdf = weighted > 0.0f ? lobe->Pdf(wi) : 0.0f;
+          if (pdf > 0.0f) {
+            const Environment::Texel& texel = environment_.texel(lobe_pixel[k]);
+            const float pdf_light = Environment::PdfFloat(texel, lobe_sin_theta[k]);
+            estimate += Shade(wi, wo, texel, pdf, weighted, {pdf_light, wi.z() * kInvPiF, weighted},
+                              missing);
+          }
+        }
+        const Rgb value = estimate.cast<double>();
+        sum += value;
+        const double luminance = Luminance(value);
+        luminance_sum += luminance;
+        luminance_squares += luminance * luminance;
+      }
+    }
+    Estimate result;
+    const double n = spp_;
+    result.radiance = sum / n;
+    if (spp_ > 1) {
+      const double mean = luminance_sum / n;
+      const double variance = std::max(0.0, (luminance_squares - n * mean * mean) / (n - 1));
+      result.luminance_std_error = std::sqrt(variance / n);
+    }
+    return result;
+  }
+
+ private:
+  // out = matrix * in, direction by direction.
+  static void Transform(const Eigen::Matrix3f& matrix, const DirectionBatch& in,
+                        DirectionBatch* out) {
+    for (int k = 0; k < kBatch; ++k) {
+      out->x[k] = matrix(0, 0) * in.x[k] + matrix(0, 1) * in.y[k] + matrix(0, 2) * in.z[k];
+      out->y[k] = matrix(1, 0) * in.x[k] + matrix(1, 1) * in.y[k] + matrix(1, 2) * in.z[k];
+      out->z[k] = matrix(2, 0) * in.x[k] + matrix(2, 1) * in.y[k] + matrix(2, 2) * in.z[k];
+    }
+  }
+  // The environment pixel of each world direction, and the sine of its polar angle.
+  void Locate(const DirectionBatch& world, uint32_t* pixel, float* sin_theta) const {
+    for (int k = 0; k < kBatch; ++k) {
+      pixel[k] = environment_.LocateFloat(world.x[k], world.y[k], world.z[k], &sin_theta[k]);
+    }
+  }
+
+  // f L cos(theta_i) w_t / p_t with the power heuristic's w_t = q_t^2 / sum q^2 over the
+  // weights' pdfs q = (q_light, q_cosine, q_lobe) (an unused technique's is 0): the sample of
+  // technique t, drawn with pdf p_t, whose weight pdf is q_t.
+  RgbF Shade(const Vec3f& wi, const Vec3f& wo, const Environment::Texel& texel, float pdf,
+             float weight_pdf, const std::array<float, 3>& weight_pdfs, int64_t* missing) const {
+    const float sum_squares = weight_pdfs[0] * weight_pdfs[0] + weight_pdfs[1] * weight_pdfs[1] +
+                              weight_pdfs[2] * weight_pdfs[2];
+    const RgbF f = FiniteOrZero(material_.EvalFloat(wi, wo), missing);
+    const RgbF radiance(texel.rgb[0], texel.rgb[1], texel.rgb[2]);
+    return f * radiance * (wi.z() * (weight_pdf / sum_squares) * (weight_pdf / pdf));
+  }
+
+  const Material& material_;
+  const Environment& environment_;
+  std::optional<LobeTechnique> lobe_;
+  int spp_;
+};
 
 }  // namespace
 
@@ -69,11 +268,11 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
   result.luminance_std_error.assign(int64_t{size} * size, 0.0f);
   std::atomic<int64_t> sphere_pixels{0}, missing{0};
   const Vec3 wo_world(0.0, 0.0, 1.0);
-  const std::optional<LobeCoordinates> lobe = material.SpecularLobe();
-  // Density of the lobe technique at wi (0 when the material has no lobe).
-  auto lobe_pdf = [&](const Vec3& wo, const Vec3& wi) {
-    return lobe ? StrategyPdf(*lobe, wo, wi) : 0.0;
-  };
+  const std::optional<EnvironmentEstimator> estimator =
+      environment == nullptr
+          ? std::nullopt
+          : std::optional<EnvironmentEstimator>(std::in_place, material, *environment,
+                                                ChooseLobeTechnique(material), options.spp);
 
   tbb::parallel_for(0, size, [&](int y) {
     int64_t row_pixels = 0, row_missing = 0;
@@ -93,67 +292,12 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
       }
 
       double std_error = 0.0;
-      if (environment != nullptr) {
+      if (estimator) {
         const int64_t pixel = int64_t{y} * size + x;
-        PixelRandom random(options.seed, static_cast<uint64_t>(pixel));
-        Rgb sum = Rgb::Zero();
-        double luminance_sum = 0.0, luminance_squares = 0.0;
-        for (int s = 0; s < options.spp; ++s) {
-          Rgb estimate = Rgb::Zero();
-          // Environment (light) sampling.
-          // Draws in separate statements: argument evaluation order is unspecified, and the
-          // image must not depend on the compiler.
-          const double v0 = random.Uniform();
-          const double v1 = random.Uniform();
-          const Environment::Sample light = environment->SampleDirection(v0, v1);
-          const Vec3 wi_light = frame.ToLocal(light.direction);
-          if (wi_light.z() > 0.0 && light.pdf > 0.0) {
-            const double weight = PowerHeuristic(light.pdf, CosineHemispherePdf(wi_light.z()),
-                                                 lobe_pdf(wo, wi_light));
-            estimate += FiniteOrZero(material.Eval(wi_light, wo), &row_missing) * light.radiance *
-                        (wi_light.z() * weight / light.pdf);
-          }
-          // Cosine (BRDF-proportional for the diffuse part) sampling.
-          const double u0 = random.Uniform();
-          const double u1 = random.Uniform();
-          const Vec3 wi_cosine = SampleCosineHemisphere(Point2(u0, u1));
-          const double pdf_cosine = CosineHemispherePdf(wi_cosine.z());
-          if (pdf_cosine > 0.0) {
-            const Vec3 world = frame.FromLocal(wi_cosine);
-            double pdf_light = 0.0;
-            const Rgb radiance_in = environment->RadianceAndPdf(world, &pdf_light);
-            const double weight = PowerHeuristic(pdf_cosine, pdf_light, lobe_pdf(wo, wi_cosine));
-            estimate += FiniteOrZero(material.Eval(wi_cosine, wo), &row_missing) * radiance_in *
-                        (wi_cosine.z() * weight / pdf_cosine);
-          }
-          // Lobe sampling, for models with a specular lobe.
-          if (lobe) {
-            const double w0 = random.Uniform();
-            const double w1 = random.Uniform();
-            const Vec3 wi_lobe = SampleStrategy(*lobe, wo, Point2(w0, w1));
-            const double pdf = lobe_pdf(wo, wi_lobe);
-            if (wi_lobe.z() > 0.0 && pdf > 0.0) {
-              double pdf_light = 0.0;
-              const Rgb radiance_in =
-                  environment->RadianceAndPdf(frame.FromLocal(wi_lobe), &pdf_light);
-              const double weight =
-                  PowerHeuristic(pdf, pdf_light, CosineHemispherePdf(wi_lobe.z()));
-              estimate += FiniteOrZero(material.Eval(wi_lobe, wo), &row_missing) * radiance_in *
-                          (wi_lobe.z() * weight / pdf);
-            }
-          }
-          sum += estimate;
-          const double luminance = Luminance(estimate);
-          luminance_sum += luminance;
-          luminance_squares += luminance * luminance;
-        }
-        const double n = options.spp;
-        radiance += sum / n;
-        if (options.spp > 1) {
-          const double mean = luminance_sum / n;
-          const double variance = std::max(0.0, (luminance_squares - n * mean * mean) / (n - 1));
-          std_error = std::sqrt(variance / n);
-        }
+        const EnvironmentEstimator::Estimate estimate =
+            estimator->Pixel(frame, options.seed, static_cast<uint64_t>(pixel), &row_missing);
+        radiance += estimate.radiance;
+        std_error = estimate.luminance_std_error;
       }
 
       float* rgba = result.radiance.pixel(x, y);

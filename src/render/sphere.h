@@ -8,10 +8,13 @@
 //   Lo = sum over directional lights of f(wi, wo) E cos(theta_i)          (exact, no noise)
 //      + integral of f(wi, wo) L_env(wi) cos(theta_i) dwi                  (Monte Carlo)
 // The environment integral takes, per pixel, `spp` directions from the environment's
-// luminance distribution and `spp` from the cosine distribution, combined by multiple
-// importance sampling with the power heuristic (Veach & Guibas, "Optimally combining sampling
-// techniques for Monte Carlo rendering", SIGGRAPH 1995). The convex sphere never shadows
-// itself, so no visibility term is needed.
+// luminance distribution, `spp` from the cosine distribution and, where the material's lobe is
+// narrower than the cosine resolves (its peak density of wi above eight times the cosine's),
+// `spp` from the lobe, combined by multiple importance sampling with the power heuristic
+// (Veach & Guibas, "Optimally combining sampling techniques for Monte Carlo rendering",
+// SIGGRAPH 1995). The convex sphere never shadows itself, so no visibility term is needed.
+// The estimate runs in single precision (render/float_math.h, lobe_sampler.h); the directional
+// lights in double.
 #pragma once
 
 #include <cstdint>

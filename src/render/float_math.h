@@ -1,0 +1,93 @@
+// Single-precision pieces of the preview's hot loop (render/sphere.cpp): the vector types, the
+// sine and cosine of a fraction of a turn, and atan2, as polynomials without libm's argument
+// reduction for arbitrary inputs. Coefficients from S. L. Moshier's Cephes library (sinf.c,
+// cosf.c, atanf.c; "Methods and Programs for Mathematical Functions", 1989), accurate to a few
+// float ulps on their reduced ranges; the tests check them against libm in double.
+//
+// Why float and not libm: one preview takes about 40 million directions, each needing a sine and
+// cosine to be drawn and an atan2 and an arccosine to be looked up in the environment; libm's
+// double versions were a quarter of the render. An error of 1e-7 rad moves a direction by a
+// thousandth of the smallest environment pixel, far below the noise.
+#pragma once
+
+#include <cmath>
+
+#include "core/angles.h"
+#include "core/vec.h"
+
+namespace brdf {
+
+using Vec3f = Vec3T<float>;
+using RgbF = RgbT<float>;
+
+inline constexpr float kPiF = static_cast<float>(kPi);
+inline constexpr float kInvPiF = static_cast<float>(kInvPi);
+
+// The selects below multiply by 0 or 1 (exact for finite values) instead of branching: the
+// directions are random, and a mispredicted branch costs as much as the polynomial.
+
+// sin(2 pi t) and cos(2 pi t) for t in [0, 1] (a fraction of a turn, as random numbers are):
+// t is split exactly into a quarter-turn count and a remainder in [-pi/4, pi/4], where the
+// Cephes polynomials hold.
+inline void SinCosTurn(float t, float* sine, float* cosine) {
+  const float quarters = 4.0f * t;  // exact
+  const int quadrant = static_cast<int>(quarters + 0.5f);
+  const float x = (quarters - static_cast<float>(quadrant)) * (0.5f * kPiF);
+  const float x2 = x * x;
+  const float s =
+      x + x * x2 * (-1.6666654611e-1f + x2 * (8.3321608736e-3f + x2 * -1.9515295891e-4f));
+  const float c =
+      1.0f - 0.5f * x2 +
+      x2 * x2 *
+          (4.166664568298827e-2f + x2 * (-1.388731625493765e-3f + x2 * 2.443315711809948e-5f));
+  // sin(k pi/2 + x), cos(k pi/2 + x) for quadrant k: (s, c), (c, -s), (-s, -c), (-c, s).
+  const float swap = static_cast<float>(quadrant & 1);
+  const float sine_sign = 1.0f - static_cast<float>(quadrant & 2);
+  const float cosine_sign = 1.0f - static_cast<float>((quadrant + 1) & 2);
+  *sine = sine_sign * (swap * c + (1.0f - swap) * s);
+  *cosine = cosine_sign * (swap * s + (1.0f - swap) * c);
+}
+
+// atan2(y, x) in [-pi, pi], 0 for (0, 0). The ratio t of the smaller to the larger magnitude
+// lies in [0, 1]; above tan(pi/8) it is mapped by atan(t) = pi/4 + atan((t - 1)/(t + 1)) into
+// [-tan(pi/8), tan(pi/8)], where Cephes' odd polynomial holds; the octant is then restored.
+inline float Atan2(float y, float x) {
+  const float ax = std::abs(x), ay = std::abs(y);
+  const float larger = std::max(ax, ay), smaller = std::min(ax, ay);
+  const float shifted = static_cast<float>(smaller > 0.41421356f * larger);
+  // (0, 0): 0 / FLT_MIN = 0.
+  const float t =
+      (smaller - shifted * larger) / std::max(larger + shifted * smaller, 1.17549435e-38f);
+  const float z = t * t;
+  const float first_octant =
+      (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z -
+       3.33329491539e-1f) *
+          z * t +
+      t + shifted * (0.25f * kPiF);
+  // |y| > |x|: pi/2 - angle; then x < 0: pi - angle; then the sign of y.
+  const float steep = std::copysign(1.0f, ax - ay);
+  const float quadrant_angle = (1.0f - steep) * (0.25f * kPiF) + steep * first_octant;
+  const float left = std::copysign(1.0f, x);
+  return std::copysign((1.0f - left) * (0.5f * kPiF) + left * quadrant_angle, y);
+}
+
+// log(1 - d) for d in [0, 1), with the digits of d kept when d is tiny (Goldberg, "What every
+// computer scientist should know about floating-point arithmetic", 1991, theorem 4: with
+// w = 1 - d rounded, log(w) d / (1 - w) is accurate although w itself has lost d's digits).
+inline float LogOneMinus(float d) {
+  const float w = 1.0f - d;
+  return w == 1.0f ? -d : std::log(w) * (d / (1.0f - w));
+}
+
+// exp(x) - 1 for x <= 0 without the cancellation near 0: the Taylor series to x^7 below
+// |x| = 1/2 (relative error under 2e-7 there), exp(x) - 1 beyond (where it is at least 0.39
+// in magnitude and nothing cancels).
+inline float ExpMinusOne(float x) {
+  if (x < -0.5f) return std::exp(x) - 1.0f;
+  return x * (1.0f +
+              x * (0.5f +
+                   x * (1.0f / 6 + x * (1.0f / 24 +
+                                        x * (1.0f / 120 + x * (1.0f / 720 + x * (1.0f / 5040)))))));
+}
+
+}  // namespace brdf
