@@ -7,8 +7,9 @@
 // "merl-beckmann" and "random-beckmann" are the same for the microfacet rungs. The sweeps that
 // follow add Gaussian noise, so their error measures what the sample count and the loss buy:
 // "noisy", 1% of each value (multiplicative, as from a calibration or a gain), and "additive", 1%
-// of the mean value (as from a detector's read noise). `is_default` is 1 when the loss and the
-// subsample size are FitOptions' defaults (what `brdf fit` runs).
+// of the mean value (as from a detector's read noise); "noisy-ggx" and "noisy-beckmann" are the
+// multiplicative sweep of the microfacet truths with the default loss. `is_default` is 1 when the
+// loss and the subsample size are FitOptions' defaults (what `brdf fit` runs).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -162,5 +163,18 @@ int main(int argc, char** argv) {
   // The losses under the other noise, at three sizes (the full sweep above shows the trend).
   sweep("additive", quick ? std::vector<size_t>{1000} : std::vector<size_t>{1000, 10000, 100000},
         Noise::kAdditive);
+  // The microfacet rungs under the same multiplicative noise, with the default loss: what the
+  // sample count and the subsample buy them ("noisy-ggx", "noisy-beckmann").
+  for (const char* text : kMicrofacetTruths) {
+    const Model microfacet = ParseModel(text);
+    const std::string name = "noisy-" + microfacet.name();
+    for (size_t count : counts) {
+      const Measurement random = RandomMeasurement(microfacet, count, 13, 0.01, Noise::kRelative);
+      if (count > defaults.max_samples) {
+        Run(name.c_str(), random, microfacet, defaults.loss, 0, sweep_repetitions);
+      }
+      Run(name.c_str(), random, microfacet, defaults.loss, defaults.max_samples, sweep_repetitions);
+    }
+  }
   return 0;
 }
