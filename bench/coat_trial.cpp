@@ -59,11 +59,13 @@ struct Variant {
   bool fit_coat_f0 = false;
 };
 
-// Blocks: rho_d[3], f0[3], alpha[1], coat_alpha[1]. `coat` and `base` (1 or 0) keep or drop the
-// coat's lobe and the transmitted base, for integrating each in its own lobe coordinates.
+// Blocks: rho_d[3], f0[3], alpha[1], coat_alpha[1], coat_f0[1]. `coat`, `lobe` and `diffuse`
+// (1 or 0) keep or drop the coat's lobe, the transmitted base lobe and the transmitted diffuse
+// term, for integrating each in its own coordinates.
 template <typename T>
 void EvalCoat(const T* rho_d, const T* f0, const T& alpha, const T& coat_alpha, const T& coat_f0,
-              const Vec3& wi, const Vec3& wo, T* f, double coat = 1, double base = 1) {
+              const Vec3& wi, const Vec3& wo, T* f, double coat = 1, double lobe = 1,
+              double diffuse = 1) {
   const double cos_i = wi.z(), cos_o = wo.z();
   if (!(cos_i > 0 && cos_o > 0)) {
     for (int c = 0; c < 3; ++c) f[c] = T(0);
@@ -75,14 +77,14 @@ void EvalCoat(const T* rho_d, const T* f0, const T& alpha, const T& coat_alpha, 
       T(coat) * models::SchlickFresnel(cos_d, coat_f0) * Ggx::D<T>(cos_h, coat_alpha) /
       (T(1) + Ggx::Lambda<T>(cos_i, coat_alpha) + Ggx::Lambda<T>(cos_o, coat_alpha)) /
       T(4 * cos_i * cos_o);
-  const T transmitted = T(base) * (T(1) - models::SchlickFresnel(cos_i, coat_f0)) *
+  const T transmitted = (T(1) - models::SchlickFresnel(cos_i, coat_f0)) *
                         (T(1) - models::SchlickFresnel(cos_o, coat_f0));
   const T base_lobe = Ggx::D<T>(cos_h, alpha) /
                       (T(1) + Ggx::Lambda<T>(cos_i, alpha) + Ggx::Lambda<T>(cos_o, alpha)) /
                       T(4 * cos_i * cos_o);
   for (int c = 0; c < 3; ++c) {
-    f[c] = coat_lobe +
-           transmitted * (rho_d[c] * T(kInvPi) + models::SchlickFresnel(cos_d, f0[c]) * base_lobe);
+    f[c] = coat_lobe + transmitted * (T(diffuse) * rho_d[c] * T(kInvPi) +
+                                      T(lobe) * models::SchlickFresnel(cos_d, f0[c]) * base_lobe);
   }
 }
 
@@ -188,10 +190,10 @@ double LogRmse(const std::vector<fitters::FitSample>& samples, const CoatParams&
 // the coat lobe, the transmitted base lobe and the transmitted diffuse term each integrated in
 // their own lobe coordinates.
 double MaxAlbedo(const CoatParams& p) {
-  const auto term = [&p](double coat, double base) -> BrdfFunction {
-    return [&p, coat, base](const Vec3& wi, const Vec3& wo) {
+  const auto term = [&p](double coat, double lobe, double diffuse) -> BrdfFunction {
+    return [&p, coat, lobe, diffuse](const Vec3& wi, const Vec3& wo) {
       double f[3];
-      EvalCoat(p.rho_d, p.f0, p.alpha, p.coat_alpha, p.coat_f0, wi, wo, f, coat, base);
+      EvalCoat(p.rho_d, p.f0, p.alpha, p.coat_alpha, p.coat_f0, wi, wo, f, coat, lobe, diffuse);
       BrdfSample sample;
       sample.value = Rgb(f[0], f[1], f[2]);
       return sample;
@@ -204,8 +206,9 @@ double MaxAlbedo(const CoatParams& p) {
   for (int k = 0; k < 90; ++k) {
     const double theta = DegToRad(k);
     const Vec3 wo(std::sin(theta), 0, std::cos(theta));
-    AlbedoEstimate albedo = IntegrateInLobeCoordinates(term(1, 0), wo, coat_lobe, options);
-    albedo += IntegrateInLobeCoordinates(term(0, 1), wo, base_lobe, options);
+    AlbedoEstimate albedo = IntegrateInLobeCoordinates(term(1, 0, 0), wo, coat_lobe, options);
+    albedo += IntegrateInLobeCoordinates(term(0, 1, 0), wo, base_lobe, options);
+    albedo += IntegrateInLobeCoordinates(term(0, 0, 1), wo, LobeCoordinates{}, options);
     worst = std::max(worst, albedo.albedo.maxCoeff());
   }
   return worst;
