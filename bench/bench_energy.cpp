@@ -14,12 +14,12 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "core/angles.h"
+#include "core/format.h"
 #include "energy/albedo.h"
 #include "energy/lobe_quadrature.h"
 #include "energy/model_terms.h"
@@ -130,8 +130,7 @@ void RegisterAll() {
     for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-8}) {
       AlbedoOptions options;
       options.quadrature.tolerance = tolerance;
-      char budget[32];
-      std::snprintf(budget, sizeof(budget), "%g", tolerance);
+      const std::string budget = Format("%g", tolerance);
       benchmark::RegisterBenchmark(
           ("BM_Sweep/" + model + "/quadrature/" + budget).c_str(),
           [model, options](benchmark::State& state) { RunCurve(state, model, options); })

@@ -24,6 +24,7 @@
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "core/format.h"
 #include "energy/albedo.h"
 #include "fitters/diagnostics.h"
 #include "fitters/fit.h"
@@ -68,10 +69,8 @@ double MaxRelativeError(const Model& fitted, const Model& truth, const char* nam
 
 std::string Truth(const std::string& model, double exponent) {
   const char* symbol = model == "phong" ? "n" : "m";
-  char text[160];
-  std::snprintf(text, sizeof(text), "%s:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:%s=%.10g",
-                model.c_str(), symbol, exponent);
-  return text;
+  return Format("%s:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:%s=%.10g", model.c_str(), symbol,
+                exponent);
 }
 
 const char* kFitHeader =
@@ -86,13 +85,11 @@ std::string FitColumns(const FitResult& fit, const Model& truth, const Measureme
   const fitters::PreparedSamples prepared = fitters::PrepareSamples(data, fitters::Loss::kL2);
   const fitters::LobeResolution lobe =
       fitters::ResolveLobe(truth.Lobe().frame, m_true, prepared.samples);
-  char line[512];
-  std::snprintf(line, sizeof(line), "%.4g,%.4g,%.4g,%.6g,%.4g,%.4g,%d,%.5g,%zu,%s",
+  return Format("%.4g,%.4g,%.4g,%.6g,%.4g,%.4g,%d,%.5g,%zu,%s",
                 MaxRelativeError(fit.model, truth, "rho_d"),
                 MaxRelativeError(fit.model, truth, "rho_s"), std::abs(m_fit - m_true) / m_true,
                 m_fit, m_stderr / m_fit, (m_fit - m_true) / m_stderr, fit.converged ? 1 : 0,
                 fit.metrics.rmse, lobe.flank_samples, WarningCodes(fit).c_str());
-  return line;
 }
 
 const std::vector<std::string> kLobedModels = {"phong", "blinn-phong"};
@@ -305,10 +302,8 @@ void SweepIntegration() {
             : std::vector<double>{1, 10, 100, 1e3, 1e4, 1e5, 3e5, 1e6};
   for (const std::string name : {"phong", "blinn-phong-exact"}) {
     for (double exponent : exponents) {
-      char text[128];
-      std::snprintf(text, sizeof(text), "%s:rho_d=0:rho_s=1:%s=%.10g", name.c_str(),
-                    name == "phong" ? "n" : "m", exponent);
-      const Model model = ParseModel(text);
+      const Model model = ParseModel(Format("%s:rho_d=0:rho_s=1:%s=%.10g", name.c_str(),
+                                            name == "phong" ? "n" : "m", exponent));
       for (double theta_deg : {0.0, 60.0}) {
         const double theta = DegToRad(theta_deg);
         double reference = 1.0;

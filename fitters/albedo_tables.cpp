@@ -2,22 +2,18 @@
 // microfacet model of the list (microfacet_bound.h) and writes it as a C++ source file whose
 // values are hexadecimal floating-point literals, so that the library compiled from it holds the
 // integrated doubles bit for bit. Not installed; not part of the `brdf` command line.
-#include <cstdio>
 #include <exception>
 #include <iostream>
 #include <string>
 
 #include "core/atomic_file.h"
+#include "core/format.h"
 #include "fitters/microfacet_bound.h"
 #include "models/model_list.h"
 
 namespace {
 
-std::string HexValue(double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%a", value);
-  return text;
-}
+std::string HexValue(double value) { return brdf::Format("%a", value); }
 
 std::string Identifier(const char* name) {
   std::string id = "kTable_";

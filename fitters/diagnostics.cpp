@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
 #include "core/angles.h"
+#include "core/format.h"
 #include "fitters/parameterization.h"
 
 namespace brdf::fitters {
@@ -59,12 +59,6 @@ constexpr double kClusteringScore = 5.0;
 // so the check allows them to be off by a factor of two: it warns when the rms misfit is more
 // than twice the stated uncertainty (chi-square > 4).
 constexpr double kMaxReducedChiSquare = 4.0;
-
-std::string Format(const char* format, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), format, value);
-  return buffer;
-}
 
 // x = -e ln cos(offset) of one sample: 0 at the lobe's centre, infinity where the lobe is 0.
 double LobeExponentTerm(LobeFrame frame, double exponent, const Vec3& wi, const Vec3& wo) {

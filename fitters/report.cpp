@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/format.h"
 #include "core/text.h"
 
 namespace brdf::fitters {
@@ -24,15 +25,10 @@ nlohmann::json ParamJson(const ParamInfo& param, const std::vector<double>& valu
 // as people read them, a value at its bound as the bound (ParamInfo::Displayed).
 std::string Numbers(const ParamInfo& param, const std::vector<double>& values, bool displayed) {
   std::string text;
-  char buffer[32];
   for (int c = 0; c < param.channels; ++c) {
     const double value = values[param.slot + c];
-    if (std::isfinite(value)) {
-      std::snprintf(buffer, sizeof(buffer), "%-12.6g", displayed ? param.Displayed(value) : value);
-    } else {
-      std::snprintf(buffer, sizeof(buffer), "%-12s", "n/a");
-    }
-    text += buffer;
+    text += std::isfinite(value) ? Format("%-12.6g", displayed ? param.Displayed(value) : value)
+                                 : Format("%-12s", "n/a");
   }
   return text;
 }
@@ -111,24 +107,20 @@ nlohmann::json FitReportJson(const FitResult& fit, const std::string& source,
 
 void PrintFitReport(std::ostream& out, const FitResult& fit, const std::string& source,
                     const Selection* selection) {
-  char line[512];
   out << "source      " << source << "\n";
   out << "model       " << fit.model.name() << "   (" << fit.model.ToString() << ")\n";
   if (selection != nullptr) {
     out << "selection   " << selection->reason << "\n";
     for (const CandidateScore& candidate : selection->candidates) {
-      std::snprintf(line, sizeof(line), "            %-18s BIC %-14.8g rmse %.4g%s\n",
-                    candidate.model.c_str(), candidate.bic, candidate.rmse,
-                    candidate.converged ? "" : "  (not converged)");
-      out << line;
+      out << Format("            %-18s BIC %-14.8g rmse %.4g%s\n", candidate.model.c_str(),
+                    candidate.bic, candidate.rmse, candidate.converged ? "" : "  (not converged)");
     }
   }
   out << "parameter   value (r g b)                           ± standard error\n";
   for (const ParamInfo& param : fit.model.info().params) {
-    std::snprintf(line, sizeof(line), "%-11s %-39s ± %s\n", param.name.c_str(),
+    out << Format("%-11s %-39s ± %s\n", param.name.c_str(),
                   Numbers(param, fit.model.params(), true).c_str(),
                   fit.stderr_available ? Numbers(param, fit.stderr_values, false).c_str() : "n/a");
-    out << line;
   }
   if (!fit.stderr_available) out << "stderr      " << fit.stderr_note << "\n";
   const std::string at_bound = AtBoundList(fit.model);
@@ -136,22 +128,17 @@ void PrintFitReport(std::ostream& out, const FitResult& fit, const std::string& 
     out << "at bound    " << at_bound
         << ": pinned at the end of the model's range (the data ask for no more of it)\n";
   }
-  std::snprintf(line, sizeof(line),
-                "metrics     rmse %.6g sr^-1, log_rmse %.6g, cosine_l2 %.6g (%s loss, robust %s)\n",
+  out << Format("metrics     rmse %.6g sr^-1, log_rmse %.6g, cosine_l2 %.6g (%s loss, robust %s)\n",
                 fit.metrics.rmse, fit.metrics.log_rmse, fit.metrics.cosine_l2, LossName(fit.loss),
                 RobustName(fit.robust));
-  out << line;
   out << "samples     " << fit.samples << " fitted, " << fit.skipped << " missing or invalid; "
       << fit.weighting << "\n";
-  std::snprintf(line, sizeof(line), "solve       %s, %d iterations, %.3f s\n",
+  out << Format("solve       %s, %d iterations, %.3f s\n",
                 fit.converged ? "converged" : "NOT CONVERGED", fit.iterations, fit.time_s);
-  out << line;
-  std::snprintf(line, sizeof(line),
-                "energy      max albedo %.4f %.4f %.4f (integrated; bound %.4f %.4f %.4f): %s\n",
+  out << Format("energy      max albedo %.4f %.4f %.4f (integrated; bound %.4f %.4f %.4f): %s\n",
                 fit.energy.max_albedo[0], fit.energy.max_albedo[1], fit.energy.max_albedo[2],
                 fit.energy.bound[0], fit.energy.bound[1], fit.energy.bound[2],
                 fit.energy.conserving ? "conserving" : "NOT conserving");
-  out << line;
   for (const std::string& warning : fit.warnings) out << "warning     " << warning << "\n";
 }
 

@@ -2,9 +2,9 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <optional>
 
+#include "core/format.h"
 #include "fitters/fit_samples.h"
 
 namespace brdf::fitters {
@@ -67,26 +67,23 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
       power_cosine = &candidate;
     }
   }
-  char reason[384];
   const models::ModelFamily family = chosen.model.info().family;
   if (family == models::ModelFamily::kDiffuse) {
-    std::snprintf(reason, sizeof(reason),
-                  "lambert has the lowest BIC: no lobe lowers the error enough to pay for its "
-                  "extra variables");
+    selection->reason =
+        "lambert has the lowest BIC: no lobe lowers the error enough to pay for its extra "
+        "variables";
   } else if (family == models::ModelFamily::kMicrofacet && power_cosine != nullptr) {
-    std::snprintf(reason, sizeof(reason),
-                  "%s has the lowest BIC (%.6g; best power-cosine lobe, %s, %.6g; lambert %.6g): "
-                  "Fresnel and masking lower the rmse from %.4g (%s) to %.4g sr^-1",
-                  selection->chosen.c_str(), winner.bic, power_cosine->model.c_str(),
-                  power_cosine->bic, lambert->bic, power_cosine->rmse, power_cosine->model.c_str(),
-                  winner.rmse);
+    selection->reason = Format(
+        "%s has the lowest BIC (%.6g; best power-cosine lobe, %s, %.6g; lambert %.6g): "
+        "Fresnel and masking lower the rmse from %.4g (%s) to %.4g sr^-1",
+        selection->chosen.c_str(), winner.bic, power_cosine->model.c_str(), power_cosine->bic,
+        lambert->bic, power_cosine->rmse, power_cosine->model.c_str(), winner.rmse);
   } else {
-    std::snprintf(reason, sizeof(reason),
-                  "%s has the lowest BIC (%.6g, lambert %.6g): the lobe lowers the rmse from "
-                  "%.4g to %.4g sr^-1",
-                  selection->chosen.c_str(), winner.bic, lambert->bic, lambert->rmse, winner.rmse);
+    selection->reason = Format(
+        "%s has the lowest BIC (%.6g, lambert %.6g): the lobe lowers the rmse from "
+        "%.4g to %.4g sr^-1",
+        selection->chosen.c_str(), winner.bic, lambert->bic, lambert->rmse, winner.rmse);
   }
-  selection->reason = reason;
   if (on_subsample) {
     selection->reason += " (BIC and rmse of every candidate on the same " +
                          std::to_string(subsample.samples.size()) +

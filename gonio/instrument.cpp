@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/angles.h"
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/text.h"
 #include "gonio/json_fields.h"
@@ -14,6 +16,12 @@ namespace {
 
 // Instrument files are a few hundred bytes; anything larger is not one.
 constexpr int64_t kMaxInstrumentBytes = int64_t{1} << 20;
+
+// The names of source.kind in an instrument file.
+constexpr EnumName<Instrument::SourceKind> kSourceKindNames[] = {
+    {Instrument::SourceKind::kCollimated, "collimated"},
+    {Instrument::SourceKind::kPoint, "point"},
+};
 
 void Require(bool ok, const std::string& field, const std::string& range, double value) {
   if (!ok) {
@@ -56,30 +64,29 @@ void Instrument::Validate() const {
 }
 
 std::string Instrument::ToJson() const {
-  nlohmann::json json = {
-      {"source",
-       {{"kind", source_kind == SourceKind::kCollimated ? "collimated" : "point"},
-        {"angular_radius_deg", source_angular_radius_deg},
-        {"distance_m", source_distance_m},
-        {"spot_radius_mm", spot_radius_mm},
-        {"lamp_power", lamp_power}}},
-      {"detector",
-       {{"solid_angle_sr", detector_solid_angle_sr},
-        {"photons", photons},
-        {"read_noise", read_noise},
-        {"blocked_within_deg", blocked_within_deg}}},
-      {"jitter_deg", jitter_deg},
-      {"stray_light", stray_light},
-      {"reference",
-       {{"rho", reference_rho},
-        {"theta_i_deg", reference_theta_i_deg},
-        {"theta_o_deg", reference_theta_o_deg},
-        {"readings", reference_readings}}},
-      {"camera",
-       {{"resolution", camera_resolution},
-        {"distance", camera_distance},
-        {"sphere_segments", sphere_segments},
-        {"max_theta_deg", camera_max_theta_deg}}}};
+  nlohmann::json json = {{"source",
+                          {{"kind", NameOf(kSourceKindNames, source_kind)},
+                           {"angular_radius_deg", source_angular_radius_deg},
+                           {"distance_m", source_distance_m},
+                           {"spot_radius_mm", spot_radius_mm},
+                           {"lamp_power", lamp_power}}},
+                         {"detector",
+                          {{"solid_angle_sr", detector_solid_angle_sr},
+                           {"photons", photons},
+                           {"read_noise", read_noise},
+                           {"blocked_within_deg", blocked_within_deg}}},
+                         {"jitter_deg", jitter_deg},
+                         {"stray_light", stray_light},
+                         {"reference",
+                          {{"rho", reference_rho},
+                           {"theta_i_deg", reference_theta_i_deg},
+                           {"theta_o_deg", reference_theta_o_deg},
+                           {"readings", reference_readings}}},
+                         {"camera",
+                          {{"resolution", camera_resolution},
+                           {"distance", camera_distance},
+                           {"sphere_segments", sphere_segments},
+                           {"max_theta_deg", camera_max_theta_deg}}}};
   return json.dump();
 }
 
@@ -119,16 +126,14 @@ Instrument ParseInstrument(const std::string& json_text, const std::string& orig
   Instrument instrument;
   JsonFields top(json, "", origin);
   top.Object("source", [&](JsonFields& source) {
-    std::string kind = "collimated";
+    std::string kind = NameOf(kSourceKindNames, instrument.source_kind);
     source.Text("kind", &kind);
-    if (kind == "collimated") {
-      instrument.source_kind = Instrument::SourceKind::kCollimated;
-    } else if (kind == "point") {
-      instrument.source_kind = Instrument::SourceKind::kPoint;
-    } else {
-      throw InputError(origin,
-                       "source.kind: expected \"collimated\" or \"point\", got \"" + kind + "\"");
+    const std::optional<Instrument::SourceKind> source_kind = LookupEnum(kSourceKindNames, kind);
+    if (!source_kind) {
+      throw InputError(origin, "source.kind: unknown source kind '" + PrintableText(kind) +
+                                   "' (known: " + KnownNames(kSourceKindNames) + ")");
     }
+    instrument.source_kind = *source_kind;
     source.Number("angular_radius_deg", &instrument.source_angular_radius_deg);
     source.Number("distance_m", &instrument.source_distance_m);
     source.Number("spot_radius_mm", &instrument.spot_radius_mm);

@@ -268,7 +268,7 @@ TEST(ExportCli, BadInputIsOneLineAndExitTwo) {
   const testing::CommandResult wrong_target =
       RunBrdf("export " + fit + " --to blender --out " + dir.File("b.blend"));
   EXPECT_EQ(wrong_target.exit_status, 2);
-  EXPECT_NE(wrong_target.err.find("mitsuba3, pbrt-v4 or gltf"), std::string::npos)
+  EXPECT_NE(wrong_target.err.find("(known: mitsuba3, pbrt-v4, gltf)"), std::string::npos)
       << wrong_target.err;
   EXPECT_EQ(RunBrdf("export " + fit + " --out " + dir.File("c.xml")).exit_status, 2);
   // Nothing written: the three inputs above (data.json, fit.json) only.

@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/tone_options.h"
 #include "core/errors.h"
+#include "core/format.h"
 #include "core/progress.h"
 #include "hdr/image_files.h"
 #include "hdr/pipeline.h"
@@ -24,10 +25,7 @@ namespace {
 std::string PresetHelp() {
   std::string text = "light from theta=45, phi=45 deg with a typical illuminance:";
   for (const IlluminancePreset& preset : IlluminancePresets()) {
-    char buffer[96];
-    std::snprintf(buffer, sizeof(buffer), " %s (%g lx, %s)", preset.name.c_str(), preset.lux,
-                  preset.description.c_str());
-    text += buffer;
+    text += Format(" %s (%g lx, %s)", preset.name.c_str(), preset.lux, preset.description.c_str());
   }
   return text + "; default office when no light, preset or environment is given";
 }

@@ -18,6 +18,7 @@
 #include "core/atomic_file.h"
 #include "core/colour.h"
 #include "core/errors.h"
+#include "core/format.h"
 #include "energy/albedo.h"
 #include "export/export.h"
 #include "fitters/report.h"
@@ -234,7 +235,7 @@ void RenderSheets(const DemoOptions& options, const Environment& environment,
   const std::string fit_label = dataset->fits[dataset->chosen].model.name() + " fit";
   struct Lighting {
     const char* name;
-    const char* caption;
+    const std::string& caption;
     std::vector<DirectionalLight> lights;
     const Environment* environment;
   };
@@ -243,13 +244,12 @@ void RenderSheets(const DemoOptions& options, const Environment& environment,
     if (preset.name == "sunny") sunny = &preset;
   }
   if (sunny == nullptr) throw ComputeError("the 'sunny' illuminance preset is missing");
-  char env_caption[160], sunny_caption[160];
-  std::snprintf(env_caption, sizeof(env_caption),
-                "under the Venice sunset environment (%.4g lx on a plane facing the camera)",
-                IlluminanceTowardCamera(environment));
-  std::snprintf(sunny_caption, sizeof(sunny_caption),
-                "under the 'sunny' preset (%s: %.5g lx on a plane facing the light)",
-                sunny->description.c_str(), sunny->lux);
+  const std::string env_caption =
+      Format("under the Venice sunset environment (%.4g lx on a plane facing the camera)",
+             IlluminanceTowardCamera(environment));
+  const std::string sunny_caption =
+      Format("under the 'sunny' preset (%s: %.5g lx on a plane facing the light)",
+             sunny->description.c_str(), sunny->lux);
   const Lighting lightings[] = {
       {"env", env_caption, {}, &environment},
       {"sunny", sunny_caption, {PresetLight("sunny")}, nullptr},
@@ -261,12 +261,10 @@ void RenderSheets(const DemoOptions& options, const Environment& environment,
         ToneMapAndCompare(a.radiance, b.radiance, ToneOptions{}, "measured", fit_label);
     const std::string path = "images/" + dataset->name + "-" + lighting.name + ".png";
     WritePng(options.out_dir + "/" + path, sheet.sheet);
-    char peaks[128];
-    std::snprintf(peaks, sizeof(peaks), "; peak luminance %.4g cd/m^2 measured, %.4g fitted",
-                  PeakNits(a.radiance), PeakNits(b.radiance));
-    dataset->images.push_back({std::string("measured | fitted | error, ") + lighting.caption +
-                                   ": " + sheet.Summary() + peaks,
-                               path});
+    const std::string peaks = Format("; peak luminance %.4g cd/m^2 measured, %.4g fitted",
+                                     PeakNits(a.radiance), PeakNits(b.radiance));
+    dataset->images.push_back(
+        {"measured | fitted | error, " + lighting.caption + ": " + sheet.Summary() + peaks, path});
   }
   dataset->seconds += SecondsSince(start);
 }
@@ -368,23 +366,18 @@ void PrintDemoSummary(std::ostream& out, const DemoResult& result) {
   PrintSummaryTable(out, result.bundled);
   out << "\nFits (--model auto --loss log over " << ModelNames()
       << "; energy integrated over 90 incidence angles):\n";
-  char line[512];
-  std::snprintf(line, sizeof(line), "%-16s %-9s %8s %-17s %10s %10s %-22s %-10s %7s\n", "dataset",
-                "kind", "samples", "chosen", "rmse", "log rmse", "max albedo r,g,b", "energy",
-                "truth");
-  out << line;
+  out << Format("%-16s %-9s %8s %-17s %10s %10s %-22s %-10s %7s\n", "dataset", "kind", "samples",
+                "chosen", "rmse", "log rmse", "max albedo r,g,b", "energy", "truth");
   for (const DemoDataset& dataset : result.datasets) {
     const fitters::FitResult& fit = dataset.fits[dataset.chosen];
-    char albedo[64];
-    std::snprintf(albedo, sizeof(albedo), "%.3f,%.3f,%.3f", fit.energy.max_albedo[0],
-                  fit.energy.max_albedo[1], fit.energy.max_albedo[2]);
-    char truth[32] = "-";
-    if (dataset.truth_error >= 0) std::snprintf(truth, sizeof(truth), "%.2g", dataset.truth_error);
-    std::snprintf(line, sizeof(line), "%-16s %-9s %8zu %-17s %10.4g %10.4g %-22s %-10s %7s\n",
+    const std::string albedo = Format("%.3f,%.3f,%.3f", fit.energy.max_albedo[0],
+                                      fit.energy.max_albedo[1], fit.energy.max_albedo[2]);
+    const std::string truth =
+        dataset.truth_error >= 0 ? Format("%.2g", dataset.truth_error) : std::string("-");
+    out << Format("%-16s %-9s %8zu %-17s %10.4g %10.4g %-22s %-10s %7s\n",
                   dataset.name.substr(0, 16).c_str(), dataset.kind.c_str(), dataset.samples,
-                  fit.model.name().c_str(), fit.metrics.rmse, fit.metrics.log_rmse, albedo,
-                  fit.energy.conserving ? "conserving" : "NOT", truth);
-    out << line;
+                  fit.model.name().c_str(), fit.metrics.rmse, fit.metrics.log_rmse, albedo.c_str(),
+                  fit.energy.conserving ? "conserving" : "NOT", truth.c_str());
   }
   out << "(truth: largest relative error of the truth's own model fitted to the simulated "
          "measurement)\n";

@@ -1,10 +1,10 @@
 // report.html of `brdf demo`: one page a person can read in a browser, with the images beside
 // it (relative links) and every number the summary table prints.
-#include <cstdio>
 #include <sstream>
 
 #include "cli/demo.h"
 #include "core/atomic_file.h"
+#include "core/format.h"
 #include "fitters/report.h"
 
 namespace brdf::cli {
@@ -33,15 +33,7 @@ std::string Escape(const std::string& text) {
   return escaped;
 }
 
-std::string Number(double value, const char* format = "%.4g") {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), format, value);
-  return buffer;
-}
-
-std::string Triple(const Rgb& rgb, const char* format = "%.3f") {
-  return Number(rgb[0], format) + ", " + Number(rgb[1], format) + ", " + Number(rgb[2], format);
-}
+std::string Triple(const Rgb& rgb) { return Format("%.3f, %.3f, %.3f", rgb[0], rgb[1], rgb[2]); }
 
 void WriteBundledTable(std::ostream& out, const DemoResult& result) {
   out << "<h2>Bundled real measurements</h2>\n<table>\n<tr><th>file</th><th>format</th>"
@@ -52,9 +44,9 @@ void WriteBundledTable(std::ostream& out, const DemoResult& result) {
     const MeasurementSummary& s = row.summary;
     out << "<tr><td>" << Escape(row.path) << "</td><td>" << Escape(s.format) << "</td><td>"
         << Escape(s.sample_name) << "</td><td>" << s.samples << "</td><td>"
-        << Number(s.theta_i_deg[0], "%.1f") << "&ndash;" << Number(s.theta_i_deg[1], "%.1f")
-        << "</td><td>" << Number(s.theta_o_deg[0], "%.1f") << "&ndash;"
-        << Number(s.theta_o_deg[1], "%.1f") << "</td><td>" << s.incidence_directions << "</td><td>"
+        << Format("%.1f", s.theta_i_deg[0]) << "&ndash;" << Format("%.1f", s.theta_i_deg[1])
+        << "</td><td>" << Format("%.1f", s.theta_o_deg[0]) << "&ndash;"
+        << Format("%.1f", s.theta_o_deg[1]) << "</td><td>" << s.incidence_directions << "</td><td>"
         << s.missing << "</td><td>" << s.negative << "</td></tr>\n";
   }
   out << "</table>\n";
@@ -70,7 +62,7 @@ void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
   }
   if (!dataset.truth.empty()) {
     out << "<br>truth: <code>" << Escape(dataset.truth) << "</code>; its model fitted back "
-        << "within " << Number(100 * dataset.truth_error, "%.2g") << " % (largest parameter)";
+        << "within " << Format("%.2g", 100 * dataset.truth_error) << " % (largest parameter)";
   }
   out << "<br>selection: " << Escape(dataset.selection.reason) << "</p>\n";
   out << "<table>\n<tr><th>model</th><th>BIC</th><th>rmse (sr<sup>-1</sup>)</th>"
@@ -80,8 +72,8 @@ void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
     const fitters::FitResult& fit = dataset.fits[k];
     const bool chosen = k == dataset.chosen;
     out << "<tr" << (chosen ? " class=\"chosen\"" : "") << "><td>" << Escape(fit.model.name())
-        << (chosen ? " &#9733;" : "") << "</td><td>" << Number(fit.bic, "%.6g") << "</td><td>"
-        << Number(fit.metrics.rmse) << "</td><td>" << Number(fit.metrics.log_rmse)
+        << (chosen ? " &#9733;" : "") << "</td><td>" << Format("%.6g", fit.bic) << "</td><td>"
+        << Format("%.4g", fit.metrics.rmse) << "</td><td>" << Format("%.4g", fit.metrics.log_rmse)
         << "</td><td><code>" << Escape(fit.model.ToString(4)) << "</code></td><td>"
         << Triple(fit.energy.max_albedo) << "</td><td>"
         << (fit.energy.conserving ? "conserving" : "<b>NOT conserving</b>") << "</td><td>"
@@ -97,7 +89,8 @@ void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
       out << "<br><a href=\"" << Escape(exported.path) << "\">" << Escape(exported.target)
           << "</a>: " << Escape(exported.material) << ", "
           << (exported.exact ? "exact" : "approximate") << ", log rmse "
-          << Number(exported.log_rmse) << ", max relative error " << Number(exported.max_relative);
+          << Format("%.4g", exported.log_rmse) << ", max relative error "
+          << Format("%.4g", exported.max_relative);
     }
     out << "</p>\n";
   }
@@ -129,7 +122,7 @@ void WriteDemoReport(const DemoResult& result, const DemoOptions& options) {
           "measurements, each fitted with every model (Ceres; energy conservation built into "
           "the fit), the simplest model the data support chosen by BIC, and every fit's "
           "directional albedo integrated over 90 incidence angles. Run time "
-       << Number(result.seconds, "%.1f") << " s" << (options.quick ? " (--quick)" : "")
+       << Format("%.1f", result.seconds) << " s" << (options.quick ? " (--quick)" : "")
        << ".</p>\n";
   for (const std::string& note : result.notes) html << "<p>" << Escape(note) << "</p>\n";
   html << "<h2>Fits</h2>\n";

@@ -1,21 +1,15 @@
 #include "cli/summary_report.h"
 
-#include <cstdio>
 #include <iomanip>
 
 #include "core/colour.h"
+#include "core/format.h"
 #include "io/formats.h"
 
 namespace brdf::cli {
 namespace {
 
 nlohmann::json RgbJson(const Rgb& rgb) { return {rgb[0], rgb[1], rgb[2]}; }
-
-std::string Format(const char* format, double a, double b) {
-  char buffer[128];
-  std::snprintf(buffer, sizeof(buffer), format, a, b);
-  return buffer;
-}
 
 }  // namespace
 
@@ -76,23 +70,18 @@ void PrintSummary(std::ostream& out, const SummaryRow& row) {
 }
 
 void PrintSummaryTable(std::ostream& out, const std::vector<SummaryRow>& rows) {
-  char buffer[512];
-  std::snprintf(buffer, sizeof(buffer), "%-44s %-10s %-26s %8s %13s %13s %5s %10s %8s\n", "file",
-                "format", "sample", "samples", "theta_i deg", "theta_o deg", "inc", "max Y",
-                "missing");
-  out << buffer;
+  out << Format("%-44s %-10s %-26s %8s %13s %13s %5s %10s %8s\n", "file", "format", "sample",
+                "samples", "theta_i deg", "theta_o deg", "inc", "max Y", "missing");
   for (const SummaryRow& row : rows) {
     const MeasurementSummary& s = row.summary;
     std::string file = row.path;
     if (file.size() > 44) file = "..." + file.substr(file.size() - 41);
     std::string sample = s.sample_name.substr(0, 26);
     const double max_y = Luminance(s.max);  // of the per-channel maxima
-    std::snprintf(buffer, sizeof(buffer),
-                  "%-44s %-10s %-26s %8zu %6.1f-%-6.1f %6.1f-%-6.1f %5zu %10.4g %8zu\n",
+    out << Format("%-44s %-10s %-26s %8zu %6.1f-%-6.1f %6.1f-%-6.1f %5zu %10.4g %8zu\n",
                   file.c_str(), s.format.c_str(), sample.c_str(), s.samples, s.theta_i_deg[0],
                   s.theta_i_deg[1], s.theta_o_deg[0], s.theta_o_deg[1], s.incidence_directions,
                   max_y, s.missing);
-    out << buffer;
   }
 }
 

@@ -1,20 +1,21 @@
 #include "core/colour.h"
 
 #include <Eigen/Dense>
-#include <cctype>
 #include <cmath>
 #include <string>
 #include <utility>
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 
 namespace brdf {
 namespace {
 
-std::string ToLower(std::string text) {
-  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return text;
-}
+// CIE names, matched without regard to case ("d65" is D65).
+constexpr EnumName<Illuminant> kIlluminantNames[] = {
+    {Illuminant::kD65, "D65"},
+    {Illuminant::kE, "E"},
+};
 
 // XYZ of a chromaticity (x, y) scaled to Y = 1.
 Vec3 XyzOfChromaticity(double x, double y) { return Vec3(x / y, 1.0, (1.0 - x - y) / y); }
@@ -59,21 +60,10 @@ double IlluminantPower(Illuminant illuminant, int k) {
 }  // namespace
 
 Illuminant ParseIlluminant(const std::string& name) {
-  const std::string lower = ToLower(name);
-  if (lower == "d65") return Illuminant::kD65;
-  if (lower == "e") return Illuminant::kE;
-  throw UsageError("unknown illuminant '" + name + "' (accepted: D65, E)");
+  return ParseEnum(kIlluminantNames, name, "illuminant", NameCase::kIgnore);
 }
 
-const char* IlluminantName(Illuminant illuminant) {
-  switch (illuminant) {
-    case Illuminant::kD65:
-      return "D65";
-    case Illuminant::kE:
-      return "E";
-  }
-  return "unknown";
-}
+const char* IlluminantName(Illuminant illuminant) { return NameOf(kIlluminantNames, illuminant); }
 
 Rgb XyzToLinearSrgb(const Vec3& xyz) { return (SrgbXyzToRgb() * xyz).array(); }
 

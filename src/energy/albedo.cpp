@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/angles.h"
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/text.h"
 #include "energy/model_terms.h"
@@ -117,31 +118,22 @@ std::string Significant(double value) {
   return text.str();
 }
 
+constexpr EnumName<AlbedoMethod> kAlbedoMethodNames[] = {
+    {AlbedoMethod::kQuadrature, "quadrature"},
+    {AlbedoMethod::kMonteCarlo, "mc"},
+    {AlbedoMethod::kImportance, "importance"},
+};
+
 std::string Rgb3(const Rgb& value, int digits) {
   return Fixed(value[0], digits) + " " + Fixed(value[1], digits) + " " + Fixed(value[2], digits);
 }
 
 }  // namespace
 
-const char* AlbedoMethodName(AlbedoMethod method) {
-  switch (method) {
-    case AlbedoMethod::kQuadrature:
-      return "quadrature";
-    case AlbedoMethod::kMonteCarlo:
-      return "mc";
-    case AlbedoMethod::kImportance:
-      return "importance";
-  }
-  return "?";
-}
+const char* AlbedoMethodName(AlbedoMethod method) { return NameOf(kAlbedoMethodNames, method); }
 
 AlbedoMethod ParseAlbedoMethod(std::string_view name) {
-  for (AlbedoMethod method :
-       {AlbedoMethod::kQuadrature, AlbedoMethod::kMonteCarlo, AlbedoMethod::kImportance}) {
-    if (name == AlbedoMethodName(method)) return method;
-  }
-  throw UsageError("unknown method '" + std::string(name) +
-                   "' (expected quadrature, mc or importance)");
+  return ParseEnum(kAlbedoMethodNames, name, "albedo method");
 }
 
 void AlbedoOptions::Validate() const {

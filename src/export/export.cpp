@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/text.h"
 #include "export/targets.h"
@@ -11,6 +12,12 @@
 
 namespace brdf::exporters {
 namespace {
+
+constexpr EnumName<Target> kTargetNames[] = {
+    {Target::kMitsuba3, "mitsuba3"},
+    {Target::kPbrtV4, "pbrt-v4"},
+    {Target::kGltf, "gltf"},
+};
 
 // Samples the renderer's parameters are chosen on: the fitting library's stratified subsample
 // (the brightest 1 % and a seeded uniform draw, reweighted), enough to pin three colours, a blend
@@ -141,23 +148,10 @@ void AnnotateText(const Model& fit, const std::string& samples_origin, ExportedM
 }  // namespace
 
 Target ParseTarget(const std::string& name) {
-  for (Target target : AllTargets()) {
-    if (name == TargetName(target)) return target;
-  }
-  throw UsageError("unknown export target '" + name + "'; expected mitsuba3, pbrt-v4 or gltf");
+  return ParseEnum(kTargetNames, name, "export target");
 }
 
-const char* TargetName(Target target) {
-  switch (target) {
-    case Target::kMitsuba3:
-      return "mitsuba3";
-    case Target::kPbrtV4:
-      return "pbrt-v4";
-    case Target::kGltf:
-      return "gltf";
-  }
-  return "";
-}
+const char* TargetName(Target target) { return NameOf(kTargetNames, target); }
 
 const char* TargetExtension(Target target) {
   switch (target) {
@@ -171,7 +165,11 @@ const char* TargetExtension(Target target) {
   return "";
 }
 
-std::vector<Target> AllTargets() { return {Target::kMitsuba3, Target::kPbrtV4, Target::kGltf}; }
+std::vector<Target> AllTargets() {
+  std::vector<Target> targets;
+  for (const EnumName<Target>& entry : kTargetNames) targets.push_back(entry.value);
+  return targets;
+}
 
 ExportSamples SamplesForExport(const Measurement& measurement) {
   ExportSamples result;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
+#include "core/format.h"
 #include "models/microfacet.h"
 
 namespace brdf::exporters {
@@ -23,11 +23,7 @@ constexpr int kEtaGrid = 32;
 
 }  // namespace
 
-std::string Num(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.6g", value);
-  return buffer;
-}
+std::string Num(double value) { return Format("%.6g", value); }
 
 void MapToExactDiffuse(const Rgb& rho_d, ExportedMaterial* material) {
   material->material = "diffuse";

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "core/format.h"
 
 namespace brdf {
 namespace {
@@ -13,12 +13,6 @@ namespace {
 // Angles are printed with six decimals in the Cornell files, so pi/2 appears as 1.570796 (just
 // below) and could appear rounded up as 1.570797: allow that much.
 constexpr double kAngleSlack = 1e-6;
-
-std::string Format(const char* format, double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), format, value);
-  return text;
-}
 
 // The polar angle of a direction above the surface, clamped into [0, pi/2] once it is known to
 // be within the slack, so that wo.z >= 0 exactly (a BRDF is zero below the horizon, DESIGN §1).

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/text.h"
 
@@ -11,6 +12,13 @@ static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
 
 namespace brdf {
 namespace {
+
+constexpr EnumName<TensorDtype> kTensorDtypeNames[] = {
+    {TensorDtype::kU8, "u8"},   {TensorDtype::kI8, "i8"},   {TensorDtype::kU16, "u16"},
+    {TensorDtype::kI16, "i16"}, {TensorDtype::kU32, "u32"}, {TensorDtype::kI32, "i32"},
+    {TensorDtype::kU64, "u64"}, {TensorDtype::kI64, "i64"}, {TensorDtype::kF16, "f16"},
+    {TensorDtype::kF32, "f32"}, {TensorDtype::kF64, "f64"},
+};
 
 // More dimensions than any tensor in the material database uses (vndf and rgb have 4 and 5).
 constexpr uint16_t kMaxDimensions = 16;
@@ -72,33 +80,7 @@ double Load(const char* bytes) {
 
 }  // namespace
 
-const char* TensorDtypeName(TensorDtype dtype) {
-  switch (dtype) {
-    case TensorDtype::kU8:
-      return "u8";
-    case TensorDtype::kI8:
-      return "i8";
-    case TensorDtype::kU16:
-      return "u16";
-    case TensorDtype::kI16:
-      return "i16";
-    case TensorDtype::kU32:
-      return "u32";
-    case TensorDtype::kI32:
-      return "i32";
-    case TensorDtype::kU64:
-      return "u64";
-    case TensorDtype::kI64:
-      return "i64";
-    case TensorDtype::kF16:
-      return "f16";
-    case TensorDtype::kF32:
-      return "f32";
-    case TensorDtype::kF64:
-      return "f64";
-  }
-  return "?";
-}
+const char* TensorDtypeName(TensorDtype dtype) { return NameOf(kTensorDtypeNames, dtype); }
 
 int TensorDtypeBytes(TensorDtype dtype) {
   switch (dtype) {

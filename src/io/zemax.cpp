@@ -42,12 +42,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "core/format.h"
 #include "core/text.h"
 #include "io/formats.h"
 
@@ -59,12 +59,6 @@ constexpr int64_t kMaxZemaxBytes = int64_t{1} << 30;
 constexpr double kHorizonZ = 1e-9;
 // Far more angles than any instrument lists; a larger count is a broken file.
 constexpr int64_t kMaxAngles = 100000;
-
-std::string Format(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%g", value);
-  return text;
-}
 
 bool EqualsIgnoringCase(std::string_view a, std::string_view b) {
   return a.size() == b.size() &&
@@ -123,7 +117,7 @@ void ReadAngleList(LineReader* reader, std::string_view count_field, AngleList* 
   const int64_t count = ParseCount(*reader, count_field, list->keyword, kMaxAngles);
   if (count == 0) reader->Fail(std::string(list->keyword) + " lists no angles");
   const std::string range =
-      std::string("[0, ") + Format(list->max_deg) + (list->max_included ? "]" : ")");
+      std::string("[0, ") + Format("%g", list->max_deg) + (list->max_included ? "]" : ")");
   std::string_view line;
   while (static_cast<int64_t>(list->degrees.size()) < count) {
     if (!NextContentLine(reader, &line) || StartsWithLetter(line)) {
@@ -142,12 +136,12 @@ void ReadAngleList(LineReader* reader, std::string_view count_field, AngleList* 
       const bool in_range =
           degrees >= 0 && (list->max_included ? degrees <= list->max_deg : degrees < list->max_deg);
       if (!in_range) {
-        reader->Fail(std::string(list->keyword) + " angle " + Format(degrees) + " deg is outside " +
-                     range);
+        reader->Fail(std::string(list->keyword) + " angle " + Format("%g", degrees) +
+                     " deg is outside " + range);
       }
       if (!list->degrees.empty() && !(degrees > list->degrees.back())) {
-        reader->Fail(std::string(list->keyword) + " angles must increase, but " + Format(degrees) +
-                     " follows " + Format(list->degrees.back()));
+        reader->Fail(std::string(list->keyword) + " angles must increase, but " +
+                     Format("%g", degrees) + " follows " + Format("%g", list->degrees.back()));
       }
       list->degrees.push_back(degrees);
     }
@@ -279,7 +273,7 @@ Measurement ReadZemax(const std::string& path, const ReadOptions&) {
   std::string tis_list;
   int64_t below_horizon = 0;
   for (const double incidence_deg : incidences.degrees) {
-    const std::string block = "the data block for AngleOfIncidence " + Format(incidence_deg);
+    const std::string block = "the data block for AngleOfIncidence " + Format("%g", incidence_deg);
     if (!NextContentLine(&reader, &line)) {
       reader.Fail("file ends before " + block + " (truncated? no DataEnd)");
     }
@@ -343,7 +337,8 @@ Measurement ReadZemax(const std::string& path, const ReadOptions&) {
   metadata["frame"] =
       "plane of incidence = x-z plane (phi_i = 0); azimuth 0 points from the "
       "specular direction toward the normal";
-  metadata["sample_rotation_deg"] = Format(rotations.degrees.empty() ? 0 : rotations.degrees[0]);
+  metadata["sample_rotation_deg"] =
+      Format("%g", rotations.degrees.empty() ? 0 : rotations.degrees[0]);
   metadata["tis"] = tis_list;
   metadata["missing"] = std::to_string(below_horizon) +
                         " cells at or below the horizon (wo.z <= 1e-9) are flagged missing";
