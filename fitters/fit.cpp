@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/deterministic_reduce.h"
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/text.h"
 #include "fitters/covariance.h"
@@ -178,24 +179,15 @@ FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared,
 
 }  // namespace
 
-Robust ParseRobust(const std::string& name) {
-  if (name == "none") return Robust::kNone;
-  if (name == "huber") return Robust::kHuber;
-  if (name == "cauchy") return Robust::kCauchy;
-  throw UsageError("unknown robust loss '" + name + "' (known: none, huber, cauchy)");
-}
+constexpr EnumName<Robust> kRobustNames[] = {
+    {Robust::kNone, "none"},
+    {Robust::kHuber, "huber"},
+    {Robust::kCauchy, "cauchy"},
+};
 
-const char* RobustName(Robust robust) {
-  switch (robust) {
-    case Robust::kNone:
-      return "none";
-    case Robust::kHuber:
-      return "huber";
-    case Robust::kCauchy:
-      return "cauchy";
-  }
-  return "?";
-}
+Robust ParseRobust(const std::string& name) { return ParseEnum(kRobustNames, name, "robust loss"); }
+
+const char* RobustName(Robust robust) { return NameOf(kRobustNames, robust); }
 
 void FitOptions::Validate() const {
   if (max_iterations < 1) throw UsageError("max_iterations must be at least 1");

@@ -11,6 +11,7 @@
 
 #include "core/angles.h"
 #include "core/colour.h"
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "io/merl.h"
 
@@ -55,24 +56,15 @@ void NeighbourAreas(const std::vector<const Vec3*>& directions, std::vector<doub
 
 }  // namespace
 
-Loss ParseLoss(const std::string& name) {
-  if (name == "l2") return Loss::kL2;
-  if (name == "log") return Loss::kLog;
-  if (name == "cosine-l2") return Loss::kCosineL2;
-  throw UsageError("unknown loss '" + name + "' (known: l2, log, cosine-l2)");
-}
+constexpr EnumName<Loss> kLossNames[] = {
+    {Loss::kL2, "l2"},
+    {Loss::kLog, "log"},
+    {Loss::kCosineL2, "cosine-l2"},
+};
 
-const char* LossName(Loss loss) {
-  switch (loss) {
-    case Loss::kL2:
-      return "l2";
-    case Loss::kLog:
-      return "log";
-    case Loss::kCosineL2:
-      return "cosine-l2";
-  }
-  return "?";
-}
+Loss ParseLoss(const std::string& name) { return ParseEnum(kLossNames, name, "loss"); }
+
+const char* LossName(Loss loss) { return NameOf(kLossNames, loss); }
 
 PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
   PreparedSamples prepared;

@@ -10,6 +10,11 @@
 #include "core/format.h"
 #include "energy/albedo.h"
 #include "export/export.h"
+#include "fitters/fit.h"
+#include "fitters/fit_samples.h"
+#include "hdr/blur.h"
+#include "hdr/image_files.h"
+#include "hdr/tone_map.h"
 #include "io/tensor_file.h"
 
 namespace brdf {
@@ -72,6 +77,37 @@ TEST(EnumNames, EveryConvertedEnumRoundTrips) {
   EXPECT_STREQ(TensorDtypeName(TensorDtype::kU8), "u8");
   EXPECT_STREQ(TensorDtypeName(TensorDtype::kF64), "f64");
   EXPECT_THROW(exporters::ParseTarget("mitsuba"), UsageError);
+  for (fitters::Loss loss : {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+    EXPECT_EQ(fitters::ParseLoss(fitters::LossName(loss)), loss);
+  }
+  for (fitters::Robust robust :
+       {fitters::Robust::kNone, fitters::Robust::kHuber, fitters::Robust::kCauchy}) {
+    EXPECT_EQ(fitters::ParseRobust(fitters::RobustName(robust)), robust);
+  }
+  for (ToneOperator op : {ToneOperator::kExposure, ToneOperator::kReinhard,
+                          ToneOperator::kReinhardExtended, ToneOperator::kNone}) {
+    EXPECT_EQ(ParseToneOperator(ToneOperatorName(op)), op);
+  }
+  for (BlurKind kind :
+       {BlurKind::kNone, BlurKind::kBox, BlurKind::kGaussian, BlurKind::kKawase, BlurKind::kDual}) {
+    EXPECT_EQ(ParseBlurKind(BlurKindName(kind)), kind);
+  }
+  EXPECT_EQ(ParseExrCompression("piz"), ExrCompression::kPiz);
+  EXPECT_EQ(ParseExrPixelType("float"), ExrPixelType::kFloat);
+  // One message shape for every enum: what, the text given, the accepted names.
+  try {
+    ParseExrPixelType("double");
+    ADD_FAILURE() << "no error";
+  } catch (const UsageError& error) {
+    EXPECT_STREQ(error.what(),
+                 "unknown OpenEXR pixel type (--exr-type) 'double' (known: half, float)");
+  }
+  try {
+    fitters::ParseLoss("l1");
+    ADD_FAILURE() << "no error";
+  } catch (const UsageError& error) {
+    EXPECT_STREQ(error.what(), "unknown loss 'l1' (known: l2, log, cosine-l2)");
+  }
 }
 
 }  // namespace

@@ -82,78 +82,73 @@ Command AddRenderCommand(CLI::App& parent) {
   AddToneOptions(app, &options->tone);
   app->add_flag("--quiet", options->quiet, "print nothing on success; no progress");
 
-  return {
-      app, [options]() {
-        std::optional<tbb::global_control> thread_limit;
-        if (options->threads > 0) {
-          thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
-                               static_cast<size_t>(options->threads));
-        }
-        options->render.Validate();
-        const ToneOptions tone = options->tone.Resolve();
-        const ExrCompression exr_compression = ParseExrCompression(options->exr_compression);
-        if (options->exr_type != "half" && options->exr_type != "float") {
-          throw UsageError("--exr-type: expected half or float, got '" + options->exr_type + "'");
-        }
-        const SceneLighting lighting =
-            MakeSceneLighting(options->lights, options->presets, options->env);
-        for (const std::string& warning : lighting.warnings) {
-          std::cerr << "brdf render: warning: " << warning << "\n";
-        }
-        const std::unique_ptr<Material> material = LoadMaterial(options->material);
-        const std::unique_ptr<Material> versus =
-            options->versus.empty() ? nullptr : LoadMaterial(options->versus);
+  return {app, [options]() {
+            std::optional<tbb::global_control> thread_limit;
+            if (options->threads > 0) {
+              thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                                   static_cast<size_t>(options->threads));
+            }
+            options->render.Validate();
+            const ToneOptions tone = options->tone.Resolve();
+            const ExrCompression exr_compression = ParseExrCompression(options->exr_compression);
+            const ExrPixelType exr_type = ParseExrPixelType(options->exr_type);
+            const SceneLighting lighting =
+                MakeSceneLighting(options->lights, options->presets, options->env);
+            for (const std::string& warning : lighting.warnings) {
+              std::cerr << "brdf render: warning: " << warning << "\n";
+            }
+            const std::unique_ptr<Material> material = LoadMaterial(options->material);
+            const std::unique_ptr<Material> versus =
+                options->versus.empty() ? nullptr : LoadMaterial(options->versus);
 
-        RenderResult render, render_versus;
-        {
-          Progress progress("render", options->render.size * (versus ? 2 : 1), options->quiet);
-          const Environment* environment = lighting.environment_or_null();
-          render =
-              RenderSphere(*material, lighting.lights, environment, options->render, &progress);
-          if (versus) {
-            render_versus =
-                RenderSphere(*versus, lighting.lights, environment, options->render, &progress);
-          }
-        }
-        if (!options->exr.empty()) {
-          const int64_t clamped =
-              WriteExr(options->exr, render.radiance,
-                       options->exr_type == "half" ? ExrPixelType::kHalf : ExrPixelType::kFloat,
-                       exr_compression);
-          if (clamped > 0) {
-            std::cerr << "brdf render: warning: " << options->exr << ": " << clamped
-                      << " values above the half-float maximum 65504 were clamped to it (use "
-                         "--exr-type float)\n";
-          }
-        }
-        std::string comparison;
-        ToneResult toned;
-        if (versus) {
-          const ComparisonSheet sheet =
-              ToneMapAndCompare(render.radiance, render_versus.radiance, tone, material->Describe(),
-                                versus->Describe(), &toned);
-          WritePng(options->output, sheet.sheet);
-          comparison = "; " + sheet.Summary();
-        } else {
-          toned = RunTonePipeline(render.radiance, tone);
-          WritePng(options->output, toned.display);
-        }
-        for (const auto& [name, result] :
-             {std::pair<const std::string&, const RenderResult&>(options->material, render),
-              {options->versus, render_versus}}) {
-          if (result.missing_lookups > 0) {
-            std::cerr << "brdf render: warning: " << name << ": " << result.missing_lookups
-                      << " lookups fell on missing data and were rendered black\n";
-          }
-        }
-        if (!options->quiet) {
-          std::cout << "wrote " << options->output
-                    << (options->exr.empty() ? "" : " and " + options->exr) << ": "
-                    << material->Describe() << "; " << render.Summary() << "; "
-                    << toned.Summary(/*radiometric=*/true) << comparison << "\n";
-        }
-        return 0;
-      }};
+            RenderResult render, render_versus;
+            {
+              Progress progress("render", options->render.size * (versus ? 2 : 1), options->quiet);
+              const Environment* environment = lighting.environment_or_null();
+              render =
+                  RenderSphere(*material, lighting.lights, environment, options->render, &progress);
+              if (versus) {
+                render_versus =
+                    RenderSphere(*versus, lighting.lights, environment, options->render, &progress);
+              }
+            }
+            if (!options->exr.empty()) {
+              const int64_t clamped =
+                  WriteExr(options->exr, render.radiance, exr_type, exr_compression);
+              if (clamped > 0) {
+                std::cerr << "brdf render: warning: " << options->exr << ": " << clamped
+                          << " values above the half-float maximum 65504 were clamped to it (use "
+                             "--exr-type float)\n";
+              }
+            }
+            std::string comparison;
+            ToneResult toned;
+            if (versus) {
+              const ComparisonSheet sheet =
+                  ToneMapAndCompare(render.radiance, render_versus.radiance, tone,
+                                    material->Describe(), versus->Describe(), &toned);
+              WritePng(options->output, sheet.sheet);
+              comparison = "; " + sheet.Summary();
+            } else {
+              toned = RunTonePipeline(render.radiance, tone);
+              WritePng(options->output, toned.display);
+            }
+            for (const auto& [name, result] :
+                 {std::pair<const std::string&, const RenderResult&>(options->material, render),
+                  {options->versus, render_versus}}) {
+              if (result.missing_lookups > 0) {
+                std::cerr << "brdf render: warning: " << name << ": " << result.missing_lookups
+                          << " lookups fell on missing data and were rendered black\n";
+              }
+            }
+            if (!options->quiet) {
+              std::cout << "wrote " << options->output
+                        << (options->exr.empty() ? "" : " and " + options->exr) << ": "
+                        << material->Describe() << "; " << render.Summary() << "; "
+                        << toned.Summary(/*radiometric=*/true) << comparison << "\n";
+            }
+            return 0;
+          }};
 }
 
 }  // namespace brdf::cli

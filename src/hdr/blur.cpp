@@ -1,33 +1,19 @@
 // Blur names and the dispatch by kind; the filters live in blur_*.cpp.
 #include "hdr/blur.h"
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 
 namespace brdf {
 
-BlurKind ParseBlurKind(const std::string& name) {
-  for (BlurKind kind :
-       {BlurKind::kNone, BlurKind::kBox, BlurKind::kGaussian, BlurKind::kKawase, BlurKind::kDual}) {
-    if (name == BlurKindName(kind)) return kind;
-  }
-  throw UsageError("unknown blur '" + name + "', expected none, box, gauss, kawase or dual");
-}
+constexpr EnumName<BlurKind> kBlurNames[] = {
+    {BlurKind::kNone, "none"},     {BlurKind::kBox, "box"},   {BlurKind::kGaussian, "gauss"},
+    {BlurKind::kKawase, "kawase"}, {BlurKind::kDual, "dual"},
+};
 
-const char* BlurKindName(BlurKind kind) {
-  switch (kind) {
-    case BlurKind::kNone:
-      return "none";
-    case BlurKind::kBox:
-      return "box";
-    case BlurKind::kGaussian:
-      return "gauss";
-    case BlurKind::kKawase:
-      return "kawase";
-    case BlurKind::kDual:
-      return "dual";
-  }
-  return "none";
-}
+BlurKind ParseBlurKind(const std::string& name) { return ParseEnum(kBlurNames, name, "blur"); }
+
+const char* BlurKindName(BlurKind kind) { return NameOf(kBlurNames, kind); }
 
 Image Blur(const Image& image, BlurKind kind, double sigma) {
   switch (kind) {

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "core/atomic_file.h"
+#include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/text.h"
 #include "hdr/image_files.h"
@@ -131,12 +132,24 @@ Image ReadExr(const std::string& path) {
   }
 }
 
+constexpr EnumName<ExrCompression> kExrCompressionNames[] = {
+    {ExrCompression::kZip, "zip"},
+    {ExrCompression::kPiz, "piz"},
+    {ExrCompression::kRle, "rle"},
+    {ExrCompression::kNone, "none"},
+};
+
+constexpr EnumName<ExrPixelType> kExrPixelTypeNames[] = {
+    {ExrPixelType::kHalf, "half"},
+    {ExrPixelType::kFloat, "float"},
+};
+
+ExrPixelType ParseExrPixelType(const std::string& name) {
+  return ParseEnum(kExrPixelTypeNames, name, "OpenEXR pixel type (--exr-type)");
+}
+
 ExrCompression ParseExrCompression(const std::string& name) {
-  if (name == "zip") return ExrCompression::kZip;
-  if (name == "piz") return ExrCompression::kPiz;
-  if (name == "rle") return ExrCompression::kRle;
-  if (name == "none") return ExrCompression::kNone;
-  throw UsageError("unknown OpenEXR compression '" + name + "', expected zip, piz, rle or none");
+  return ParseEnum(kExrCompressionNames, name, "OpenEXR compression");
 }
 
 int64_t WriteExr(const std::string& path, const Image& image, ExrPixelType type,

@@ -14,6 +14,8 @@
 namespace brdf {
 
 enum class ExrPixelType { kHalf, kFloat };
+// "half" or "float"; anything else is a UsageError naming the accepted names.
+ExrPixelType ParseExrPixelType(const std::string& name);
 // Lossless OpenEXR compressions: zip (zlib level 1 here, 16-line blocks), piz (wavelet +
 // Huffman; the default: on noisy HDR renders about as small as zip and twice as fast to write,
 // docs/hdr.md), rle, none.

@@ -10,6 +10,7 @@
 
 #include "core/colour.h"
 #include "core/errors.h"
+#include "core/format.h"
 #include "hdr/bloom.h"
 #include "hdr/exposure.h"
 #include "hdr/simd.h"
@@ -38,31 +39,22 @@ void ToneOptions::Validate() const {
 }
 
 std::string ToneResult::Summary(bool radiometric) const {
-  char buffer[256];
-  std::string text;
-  if (radiometric) {
-    std::snprintf(buffer, sizeof(buffer),
-                  "%dx%d, log-average luminance %.4g W/(m^2 sr) = %.4g cd/m^2, max %.4g W/(m^2 sr) "
-                  "= %.4g cd/m^2, exposure %.4g",
-                  display.width, display.height, scene.log_average,
-                  RadianceToNits(scene.log_average), scene.max, RadianceToNits(scene.max),
-                  exposure);
-  } else {
-    std::snprintf(
-        buffer, sizeof(buffer),
-        "%dx%d, log-average luminance %.4g, max %.4g (the file's own units), exposure %.4g",
-        display.width, display.height, scene.log_average, scene.max, exposure);
-  }
-  text = buffer;
+  std::string text =
+      radiometric
+          ? Format(
+                "%dx%d, log-average luminance %.4g W/(m^2 sr) = %.4g cd/m^2, max %.4g "
+                "W/(m^2 sr) = %.4g cd/m^2, exposure %.4g",
+                display.width, display.height, scene.log_average, RadianceToNits(scene.log_average),
+                scene.max, RadianceToNits(scene.max), exposure)
+          : Format(
+                "%dx%d, log-average luminance %.4g, max %.4g (the file's own units), "
+                "exposure %.4g",
+                display.width, display.height, scene.log_average, scene.max, exposure);
   text += std::string(", ") + ToneOperatorName(mapping.tone_operator);
   if (mapping.tone_operator == ToneOperator::kReinhardExtended) {
-    std::snprintf(buffer, sizeof(buffer), " L_white %.4g", mapping.white);
-    text += buffer;
+    text += Format(" L_white %.4g", mapping.white);
   }
-  if (bloom_sigma > 0.0) {
-    std::snprintf(buffer, sizeof(buffer), ", bloom sigma %.3g px", bloom_sigma);
-    text += buffer;
-  }
+  if (bloom_sigma > 0.0) text += Format(", bloom sigma %.3g px", bloom_sigma);
   return text;
 }
 
@@ -76,21 +68,17 @@ constexpr double kVisibleExposureFactor = 2.0;
 
 std::string BlackPixelWarning(const SceneLuminance& scene) {
   if (scene.black_pixels == 0 || scene.pixels == 0) return "";
-  char buffer[320];
   if (scene.black_pixels == scene.pixels) {
-    std::snprintf(buffer, sizeof(buffer),
-                  "all %lld pixels are black (luminance <= 0): nothing to expose",
+    return Format("all %lld pixels are black (luminance <= 0): nothing to expose",
                   static_cast<long long>(scene.pixels));
-    return buffer;
   }
   const double factor = scene.log_average_lit / scene.log_average;
   if (!(factor >= kVisibleExposureFactor)) return "";
-  std::snprintf(buffer, sizeof(buffer),
-                "%lld of %lld pixels (%.3g%%) are black (luminance <= 0) and raise the automatic "
-                "exposure %.3gx (%.2g stops) over the rest's; set --exposure to choose it",
-                static_cast<long long>(scene.black_pixels), static_cast<long long>(scene.pixels),
-                100.0 * scene.black_pixels / scene.pixels, factor, std::log2(factor));
-  return buffer;
+  return Format(
+      "%lld of %lld pixels (%.3g%%) are black (luminance <= 0) and raise the automatic "
+      "exposure %.3gx (%.2g stops) over the rest's; set --exposure to choose it",
+      static_cast<long long>(scene.black_pixels), static_cast<long long>(scene.pixels),
+      100.0 * scene.black_pixels / scene.pixels, factor, std::log2(factor));
 }
 
 }  // namespace

@@ -6,31 +6,24 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/enum_names.h"
 #include "core/errors.h"
 
 namespace brdf {
 
+constexpr EnumName<ToneOperator> kToneOperatorNames[] = {
+    {ToneOperator::kExposure, "exposure"},
+    {ToneOperator::kReinhard, "reinhard"},
+    {ToneOperator::kReinhardExtended, "reinhard-extended"},
+    {ToneOperator::kNone, "none"},
+};
+
 ToneOperator ParseToneOperator(const std::string& name) {
-  for (ToneOperator op : {ToneOperator::kExposure, ToneOperator::kReinhard,
-                          ToneOperator::kReinhardExtended, ToneOperator::kNone}) {
-    if (name == ToneOperatorName(op)) return op;
-  }
-  throw UsageError("unknown tone operator '" + name +
-                   "', expected exposure, reinhard, reinhard-extended or none");
+  return ParseEnum(kToneOperatorNames, name, "tone operator");
 }
 
 const char* ToneOperatorName(ToneOperator tone_operator) {
-  switch (tone_operator) {
-    case ToneOperator::kExposure:
-      return "exposure";
-    case ToneOperator::kReinhard:
-      return "reinhard";
-    case ToneOperator::kReinhardExtended:
-      return "reinhard-extended";
-    case ToneOperator::kNone:
-      return "none";
-  }
-  return "none";
+  return NameOf(kToneOperatorNames, tone_operator);
 }
 
 ToneMapping PlanToneMapping(ToneOperator tone_operator, const SceneLuminance& scene, double key,

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/errors.h"
+#include "core/format.h"
 #include "hdr/simd.h"
 
 #if BRDF_HDR_HAS_AVX2_PATHS
@@ -40,9 +41,7 @@ TransferCurve TransferCurve::Parse(const std::string& text) {
 
 std::string TransferCurve::Name() const {
   if (kind == Kind::kSrgb) return "srgb";
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "gamma %g", gamma);
-  return buffer;
+  return Format("gamma %g", gamma);
 }
 
 double TransferCurve::Encode(double linear) const {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/format.h"
 
 namespace brdf {
 namespace {
@@ -69,13 +70,10 @@ void Label(cv::Mat& sheet, const std::string& text, int x, int width) {
 }  // namespace
 
 std::string ComparisonSheet::Summary() const {
-  char buffer[200];
-  std::snprintf(
-      buffer, sizeof(buffer),
+  return Format(
       "relative luminance error |A-B|/max(B, 1%% of max B): mean %.3g, 99th percentile %.3g, "
       "max %.3g (colour bar 0..%g)",
       mean_relative_error, p99_relative_error, max_relative_error, colour_bar_top);
-  return buffer;
 }
 
 ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& display_b,
@@ -158,8 +156,7 @@ ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& displ
   cv::resize(ramp_colour, ramp_colour, cv::Size(14, bar_height), 0, 0, cv::INTER_NEAREST);
   ramp_colour.copyTo(sheet(cv::Rect(bar_x, bar_top, 14, bar_height)));
   for (double fraction : {1.0, 0.5, 0.0}) {
-    char text[32];
-    std::snprintf(text, sizeof(text), "%g", fraction * result.colour_bar_top);
+    const std::string text = Format("%g", fraction * result.colour_bar_top);
     const int y = bar_top + static_cast<int>((1.0 - fraction) * (bar_height - 1));
     cv::putText(sheet, text, cv::Point(bar_x + 18, y + 4), cv::FONT_HERSHEY_SIMPLEX, 0.38,
                 cv::Scalar(255, 255, 255), 1, cv::LINE_AA);

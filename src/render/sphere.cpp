@@ -10,6 +10,7 @@
 
 #include "core/colour.h"
 #include "core/errors.h"
+#include "core/format.h"
 #include "core/progress.h"
 #include "render/float_math.h"
 #include "render/lobe_sampler.h"
@@ -240,10 +241,8 @@ void RenderOptions::Validate() const {
 }
 
 std::string RenderResult::Summary() const {
-  char buffer[160];
-  std::snprintf(buffer, sizeof(buffer), "%dx%d, %lld sphere pixels", radiance.width,
-                radiance.height, static_cast<long long>(sphere_pixels));
-  std::string text = buffer;
+  std::string text = Format("%dx%d, %lld sphere pixels", radiance.width, radiance.height,
+                            static_cast<long long>(sphere_pixels));
   if (missing_lookups > 0) {
     text += ", " + std::to_string(missing_lookups) + " lookups without data (black)";
   }
