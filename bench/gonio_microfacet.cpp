@@ -31,8 +31,6 @@
 namespace brdf::gonio {
 namespace {
 
-bool quick = false;  // --quick
-
 // A silver-like smooth conductor: its exact Fresnel reflectance stays within 0.987–0.992 up to
 // 85°, so Schlick's form with a fitted f0 differs from it by less than 0.5 %.
 constexpr const char* kBase = "conductor:ior=0.05:k=4.3";
