@@ -71,19 +71,24 @@ void ProblemBlocks(const ModelFitter<ModelType>& fitter, Variables* at,
 // A residual block's Jacobian: one row per residual, the parameter blocks side by side.
 using BlockJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// Evaluates one residual block at `blocks`: its residuals and its Jacobian (rows x n).
+// Evaluates one residual block at `blocks`: its residuals and, unless `jacobian` is null, its
+// Jacobian (rows x n). A block that fails to evaluate reads as infinite residuals.
 inline void EvaluateBlock(const ceres::CostFunction* cost, const std::vector<double*>& blocks,
                           const std::vector<int>& sizes, int n, Eigen::VectorXd* residuals,
                           BlockJacobian* jacobian) {
   const int rows = cost->num_residuals();
   residuals->resize(rows);
-  std::vector<std::vector<double>> jacobians(blocks.size());
-  std::vector<double*> jacobian_pointers(blocks.size());
-  for (size_t b = 0; b < blocks.size(); ++b) {
+  std::vector<std::vector<double>> jacobians(jacobian != nullptr ? blocks.size() : 0);
+  std::vector<double*> jacobian_pointers(jacobians.size());
+  for (size_t b = 0; b < jacobians.size(); ++b) {
     jacobians[b].resize(static_cast<size_t>(rows) * sizes[b]);
     jacobian_pointers[b] = jacobians[b].data();
   }
-  cost->Evaluate(blocks.data(), residuals->data(), jacobian_pointers.data());
+  if (!cost->Evaluate(blocks.data(), residuals->data(),
+                      jacobian != nullptr ? jacobian_pointers.data() : nullptr)) {
+    residuals->setConstant(std::numeric_limits<double>::infinity());
+  }
+  if (jacobian == nullptr) return;
   jacobian->resize(rows, n);
   int column = 0;
   for (size_t b = 0; b < blocks.size(); ++b) {
@@ -175,9 +180,11 @@ inline bool SandwichCovariance(const Eigen::MatrixXd& full_a, const Eigen::Matri
 // 3 k + c), in one parallel pass (each block evaluating its batches in parallel), the blocks'
 // partial sums combined in a fixed order, so the result does not depend on the thread count.
 // Summing a block at a time lets J^T J be one matrix product instead of a rank update a row.
+// Without `with_jacobian` only the residuals are evaluated and `add` gets an empty Jacobian.
 template <typename ModelType, typename Sums, typename Add, typename Combine>
 Sums SumOverBlocks(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
-                   const Variables& v, const Sums& zero, Add&& add, Combine&& combine) {
+                   const Variables& v, const Sums& zero, Add&& add, Combine&& combine,
+                   bool with_jacobian = true) {
   Variables at = v;
   std::vector<double*> blocks;
   std::vector<int> sizes;
@@ -198,7 +205,7 @@ Sums SumOverBlocks(const ModelFitter<ModelType>& fitter, ceres::Problem* problem
         BlockJacobian jacobian;
         for (int64_t index = begin; index < end; ++index) {
           EvaluateBlock(problem->GetCostFunctionForResidualBlock(residual_blocks[index]), blocks,
-                        sizes, n, &residuals, &jacobian);
+                        sizes, n, &residuals, with_jacobian ? &jacobian : nullptr);
           add(partial, first_row[index], residuals, jacobian);
         }
         return partial;

@@ -75,28 +75,12 @@ Variables Unflatten(const ModelFitter<ModelType>& fitter, const Eigen::VectorXd&
 template <typename ModelType>
 double HalfSquaredSum(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
                       const Variables& v) {
-  Variables at = v;
-  std::vector<double*> blocks;
-  std::vector<int> sizes;
-  ProblemBlocks(fitter, &at, &blocks, &sizes);
-  std::vector<ceres::ResidualBlockId> residual_blocks;
-  problem->GetResidualBlocks(&residual_blocks);
-  return DeterministicReduce(
-      static_cast<int64_t>(residual_blocks.size()), 1, 0.0,
-      [&](int64_t begin, int64_t end, double partial) {
-        std::vector<double> residuals;
-        for (int64_t index = begin; index < end; ++index) {
-          const ceres::CostFunction* cost =
-              problem->GetCostFunctionForResidualBlock(residual_blocks[index]);
-          residuals.resize(cost->num_residuals());
-          if (!cost->Evaluate(blocks.data(), residuals.data(), nullptr)) {
-            return std::numeric_limits<double>::infinity();
-          }
-          for (double r : residuals) partial += 0.5 * r * r;
-        }
-        return partial;
+  return SumOverBlocks(
+      fitter, problem, v, 0.0,
+      [](double& partial, int64_t, const Eigen::VectorXd& residuals, const BlockJacobian&) {
+        partial += 0.5 * residuals.squaredNorm();
       },
-      [](double a, double b) { return a + b; });
+      [](double a, double b) { return a + b; }, /*with_jacobian=*/false);
 }
 
 struct Normal {
