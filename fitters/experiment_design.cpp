@@ -236,24 +236,30 @@ double LogDet(const Model& model, const std::vector<DesignPoint>& points) {
 
 template <typename M>
 PredictedErrors Predict(const Model& model, const Measurement& measurement,
-                        double common_scale_variance) {
+                        const ExpectedNoise& noise) {
   DesignState<M> state(model);
   const PreparedSamples prepared = PrepareSamples(measurement, Loss::kL2);
   if (prepared.samples.size() != measurement.samples.size() || !measurement.has_sigma()) {
     throw UsageError("a predicted fit needs every geometry above the horizon, with its sigma");
   }
-  // E[r^2] of sample k's channel c: (scale_c sigma_c)^2, the noise the multiplier scales.
+  const bool split = !noise.independent_sigma.empty();
+  if (split && noise.independent_sigma.size() != measurement.samples.size()) {
+    throw UsageError("a predicted fit needs one independent sigma per sample");
+  }
+  // E[r^2] of sample k's channel c: (scale_c sigma_c)^2 with the sigma that differs from reading
+  // to reading; the multiplier scale_c weighs by the stated sigma, as the fit does.
+  const std::vector<Rgb>& independent = split ? noise.independent_sigma : measurement.sigma;
   std::vector<double> expected(3 * prepared.samples.size());
   for (size_t k = 0; k < prepared.samples.size(); ++k) {
     for (int c = 0; c < 3; ++c) {
-      expected[3 * k + c] = std::pow(prepared.samples[k].scale[c] * measurement.sigma[k][c], 2);
+      expected[3 * k + c] = std::pow(prepared.samples[k].scale[c] * independent[k][c], 2);
     }
   }
   Variables v = state.v;
   auto problem = state.fitter.BuildProblem(prepared.samples, &v);
   Eigen::MatrixXd a, b, covariance;
   JacobianSums(state.fitter, problem.get(), state.v, &expected, &a, &b);
-  if (common_scale_variance > 0) {
+  if (noise.common_scale_variance > 0) {
     // Every value times (1 + e): the residuals change by -scale f e, the variables by
     // A^-1 g e with g = sum J^T scale f, which adds var(e) g g^T to B.
     Eigen::VectorXd g = Eigen::VectorXd::Zero(a.rows());
@@ -263,7 +269,7 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement,
                          const int c = static_cast<int>(row % 3);
                          g += jacobian * (sample.scale[c] * sample.value[c]);
                        });
-    b += common_scale_variance * g * g.transpose();
+    b += noise.common_scale_variance * g * g.transpose();
   }
   PredictedErrors errors;
   errors.note = state.held_note;
@@ -359,10 +365,20 @@ double InformationLogDet(const Model& model, const std::vector<DesignPoint>& poi
       model.name(), [&](auto model_type) { return LogDet<decltype(model_type)>(model, points); });
 }
 
-PredictedErrors PredictErrors(const Model& model, const Measurement& measurement,
+ExpectedNoise ExpectedNoiseAt(const std::vector<DesignPoint>& points,
                               double common_scale_variance) {
+  ExpectedNoise noise;
+  noise.common_scale_variance = common_scale_variance;
+  noise.independent_sigma.reserve(points.size());
+  for (const DesignPoint& point : points)
+    noise.independent_sigma.push_back(point.independent_sigma);
+  return noise;
+}
+
+PredictedErrors PredictErrors(const Model& model, const Measurement& measurement,
+                              const ExpectedNoise& noise) {
   return VisitModelType(model.name(), [&](auto model_type) {
-    return Predict<decltype(model_type)>(model, measurement, common_scale_variance);
+    return Predict<decltype(model_type)>(model, measurement, noise);
   });
 }
 

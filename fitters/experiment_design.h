@@ -30,10 +30,14 @@
 
 namespace brdf::fitters {
 
-// One candidate reading: nominal directions and the one-sigma noise of its value (sr^-1).
+// One candidate reading: nominal directions and the one-sigma noise of its value (sr^-1): the
+// sigma the instrument will state (what the information and a fit weigh the reading by), and
+// the part of it that is independent from reading to reading (what a fit's scatter follows;
+// the rest is common to the run, ExpectedNoise::common_scale_variance).
 struct DesignPoint {
   Vec3 wi, wo;
   Rgb sigma = Rgb::Ones();
+  Rgb independent_sigma = Rgb::Ones();
 };
 
 enum class DesignCriterion { kD, kA, kParam };
@@ -75,15 +79,26 @@ struct PredictedErrors {
   std::string note;  // why not, when they are not
 };
 
+// The noise of a run beyond the sigma its readings state.
+struct ExpectedNoise {
+  // Per sample, the one-sigma noise independent from reading to reading; empty: all of the
+  // stated sigma is.
+  std::vector<Rgb> independent_sigma;
+  // Relative variance of an error shared by every value of the run (the instrument's
+  // reference): it moves the fit along the direction a common scale of all values moves it,
+  // whatever the geometries.
+  double common_scale_variance = 0;
+};
+
+// The noise of a run at `points`: their independent sigmas and the run's common scale variance.
+ExpectedNoise ExpectedNoiseAt(const std::vector<DesignPoint>& points, double common_scale_variance);
+
 // The standard errors `brdf fit` (L2 loss, its default) will report for a measurement of
-// `model` at the geometries of `measurement`, whose `sigma` is the noise its readings will
-// carry: the fit's own sample weights (PrepareSamples: solid angle, the file's weights,
-// sigma) and the sandwich covariance with the expected squared residuals in place of measured
-// ones. `measurement`'s values must be the model's (noise-free). `common_scale_variance` is the
-// relative variance of an error shared by every value of the run (the instrument's reference):
-// it moves the fit along the direction a common scale of all values moves it, whatever the
-// geometries.
+// `model` at the geometries of `measurement`, whose `sigma` is the sigma its readings will
+// state: the fit's own sample weights (PrepareSamples: solid angle, the file's weights,
+// sigma) and the sandwich covariance with the expected squared residuals (from `noise`) in
+// place of measured ones. `measurement`'s values must be the model's (noise-free).
 PredictedErrors PredictErrors(const Model& model, const Measurement& measurement,
-                              double common_scale_variance = 0);
+                              const ExpectedNoise& noise = {});
 
 }  // namespace brdf::fitters

@@ -127,14 +127,16 @@ double Calibration::Slope(double cos_theta_o) const {
   return counts_per_reading / reference_counts_ * ideal_reference_reading_ / cos_theta_o;
 }
 
-Rgb Calibration::ExpectedSigma(const Rgb& reading, double cos_theta_o) const {
+Rgb Calibration::ExpectedSigma(const Rgb& reading, double cos_theta_o,
+                               bool include_reference) const {
   if (instrument_.photons <= 0) return Rgb::Zero();
   const double read_variance = instrument_.read_noise * instrument_.read_noise;
+  const double reference_variance = include_reference ? reference_counts_variance_ : 0.0;
   Rgb sigma;
   for (int c = 0; c < 3; ++c) {
     const double expected = ExpectedCounts(reading[c]);
     const double ratio = expected / reference_expected_counts_;
-    sigma[c] = std::sqrt(expected + read_variance + ratio * ratio * reference_counts_variance_) /
+    sigma[c] = std::sqrt(expected + read_variance + ratio * ratio * reference_variance) /
                reference_expected_counts_;
   }
   return sigma * ideal_reference_reading_ / cos_theta_o;
@@ -203,9 +205,15 @@ NoiseModel::NoiseModel(const GonioSample& sample, const Instrument& instrument)
   }
 }
 
-Rgb NoiseModel::Sigma(const Vec3& wi, const Vec3& wo) const {
+Rgb NoiseModel::Sigma(const Vec3& wi, const Vec3& wo) const { return SigmaOf(wi, wo, true); }
+
+Rgb NoiseModel::IndependentSigma(const Vec3& wi, const Vec3& wo) const {
+  return SigmaOf(wi, wo, /*include_reference=*/false);
+}
+
+Rgb NoiseModel::SigmaOf(const Vec3& wi, const Vec3& wo, bool include_reference) const {
   const Rgb reading = sample_.ExpectedReading(instrument_, wi, wo);
-  return CombinedSigma(calibration_.ExpectedSigma(reading, wo.z()), Rgb::Zero(),
+  return CombinedSigma(calibration_.ExpectedSigma(reading, wo.z(), include_reference), Rgb::Zero(),
                        PositioningSigma(sample_, instrument_, wi, wo, reading),
                        calibration_.Slope(wo.z()));
 }

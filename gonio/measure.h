@@ -66,8 +66,11 @@ class Calibration {
 
   double reference_counts() const { return reference_counts_; }
   // The one-sigma uncertainty Calibrate states for reading R, before any noise is drawn (the
-  // expected counts in place of noisy ones): the noise model a plan is designed against.
-  Rgb ExpectedSigma(const Rgb& reading, double cos_theta_o) const;
+  // expected counts in place of noisy ones): the noise model a plan is designed against. The
+  // stated sigma includes the run reference's error, ratio · sigma_ref, which is the same for
+  // every reading of the run; without `include_reference` it is left out, leaving the part that
+  // is independent from one reading to the next.
+  Rgb ExpectedSigma(const Rgb& reading, double cos_theta_o, bool include_reference = true) const;
   // Relative variance of the run's reference (the mean of its readings): an error common to
   // every calibrated value of the run, which no choice of geometries averages away.
   double ReferenceRelativeVariance() const;
@@ -103,10 +106,17 @@ class NoiseModel {
   // Throws UsageError when the sample has no expected reading.
   NoiseModel(const GonioSample& sample, const Instrument& instrument);
   Rgb Sigma(const Vec3& wi, const Vec3& wo) const;
+  // The part of Sigma that is independent from reading to reading: all of it but the run
+  // reference's error, which is common to every reading (CommonScaleVariance). At a bright peak
+  // that common part dominates the stated sigma (its variance grows as the square of the
+  // reading, the counts' own as the reading), so a fit's scatter follows this, not Sigma.
+  Rgb IndependentSigma(const Vec3& wi, const Vec3& wo) const;
   // Relative variance of the scale error common to every value of a run (the reference).
   double CommonScaleVariance() const { return calibration_.ReferenceRelativeVariance(); }
 
  private:
+  Rgb SigmaOf(const Vec3& wi, const Vec3& wo, bool include_reference) const;
+
   const GonioSample& sample_;
   const Instrument& instrument_;
   Calibration calibration_;

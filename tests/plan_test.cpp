@@ -42,7 +42,8 @@ std::vector<fitters::DesignPoint> Points(const gonio::Schedule& schedule,
   for (const gonio::Incidence& incidence : schedule.incidences) {
     for (const gonio::Detector& detector : incidence.detectors) {
       if (incidence.wi.dot(detector.wo) > cos_blocked) continue;
-      points.push_back({incidence.wi, detector.wo, noise.Sigma(incidence.wi, detector.wo)});
+      points.push_back({incidence.wi, detector.wo, noise.Sigma(incidence.wi, detector.wo),
+                        noise.IndependentSigma(incidence.wi, detector.wo)});
     }
   }
   return points;
@@ -72,6 +73,72 @@ Measurement Predicted(const Model& model, const std::vector<fitters::DesignPoint
   return measurement;
 }
 
+// The sigma a reading states includes the run reference's error, which is the same for every
+// reading of the run; at a bright peak it is most of the stated variance (it grows as the
+// square of the reading, the counts' own only as the reading). Within one run the readings
+// scatter about the noise-free values times one common (1 + e) by the independent sigma, not
+// by the stated one: that is what a fit's scatter of a lobe's shape follows.
+TEST(Plan, IndependentSigmaIsTheScatterOfReadingsWithinARun) {
+  const Model model = LoadModel("blinn-phong:rho_d=0.1:rho_s=0.5:m=5000");
+  gonio::Instrument instrument;
+  instrument.jitter_deg = 0;
+  gonio::Instrument ideal = instrument;
+  ideal.photons = 0;
+  gonio::Schedule schedule;
+  schedule.spec = "file:peaks";
+  schedule.kind = "file";
+  schedule.designed = true;
+  for (int theta = 10; theta <= 70; ++theta) {
+    const Vec3 wi = SphericalDirection(DegToRad(theta), 0);
+    schedule.incidences.push_back({wi, {}});
+    for (double offset : {-0.2, 0.0, 0.2}) {
+      schedule.incidences.back().detectors.push_back(
+          {SphericalDirection(DegToRad(theta + offset), kPi), 0});
+    }
+  }
+  gonio::MeasureOptions options;
+  options.sample = "model:" + model.ToString();
+  options.instrument = ideal;
+  const Measurement expected = gonio::Measure(options, schedule);
+  options.instrument = instrument;
+  options.seed = 7;
+  const Measurement measured = gonio::Measure(options, schedule);
+  ASSERT_EQ(measured.samples.size(), expected.samples.size());
+
+  const gonio::ModelSample sample(model, instrument);
+  const gonio::NoiseModel noise(sample, instrument);
+  std::vector<double> deviation, value, independent, stated;
+  for (size_t k = 0; k < measured.samples.size(); ++k) {
+    const Rgb sigma = noise.IndependentSigma(measured.samples[k].wi, measured.samples[k].wo);
+    for (int c = 0; c < 3; ++c) {
+      deviation.push_back(measured.samples[k].value[c] - expected.samples[k].value[c]);
+      value.push_back(expected.samples[k].value[c]);
+      independent.push_back(sigma[c]);
+      stated.push_back(measured.sigma[k][c]);
+    }
+  }
+  // The run's common error e: the weighted least-squares fit of deviation = e · value.
+  double numerator = 0, denominator = 0;
+  for (size_t j = 0; j < value.size(); ++j) {
+    numerator += deviation[j] * value[j] / (independent[j] * independent[j]);
+    denominator += value[j] * value[j] / (independent[j] * independent[j]);
+  }
+  const double e = numerator / denominator;
+  const auto scatter = [&](const std::vector<double>& sigma) {
+    double sum = 0;
+    for (size_t j = 0; j < value.size(); ++j)
+      sum += std::pow((deviation[j] - e * value[j]) / sigma[j], 2);
+    return sum / static_cast<double>(value.size() - 1);
+  };
+  // A chi-square over n - 1 degrees of freedom: relative standard deviation sqrt(2 / (n - 1)).
+  const double n = static_cast<double>(value.size());
+  EXPECT_NEAR(scatter(independent), 1.0, 4 * std::sqrt(2 / (n - 1)));
+  // The stated sigma overstates it here by more than a factor of two in variance.
+  EXPECT_LT(scatter(stated), 0.5);
+  // And e is of the size the reference's variance says (a normal draw: within 4 sigma).
+  EXPECT_LT(std::abs(e), 4 * std::sqrt(noise.CommonScaleVariance()));
+}
+
 // Fits of `seeds` simulated measurements of a plan: the spread of each parameter against the
 // standard error predicted before any measurement. The sample standard deviation of n normal
 // values has a relative standard error of 1/sqrt(2 (n - 1)); the tolerance is 20 % plus
@@ -94,8 +161,8 @@ TEST(Plan, PredictedStderrMatchesSpreadOfFits) {
   ASSERT_EQ(result.chosen.size(), 120u);
   std::vector<fitters::DesignPoint> plan;
   for (size_t k : result.chosen) plan.push_back(candidates[k]);
-  const fitters::PredictedErrors predicted =
-      fitters::PredictErrors(model, Predicted(model, plan), noise.CommonScaleVariance());
+  const fitters::PredictedErrors predicted = fitters::PredictErrors(
+      model, Predicted(model, plan), fitters::ExpectedNoiseAt(plan, noise.CommonScaleVariance()));
   ASSERT_TRUE(predicted.available) << predicted.note;
 
   const int kSeeds = 30;

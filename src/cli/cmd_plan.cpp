@@ -105,8 +105,10 @@ std::vector<fitters::DesignPoint> Geometries(const gonio::Schedule& schedule,
                      std::to_string(points.size()) +
                      " geometries within the constraints): lower it or widen the candidates");
   }
-  tbb::parallel_for(size_t{0}, points.size(),
-                    [&](size_t k) { points[k].sigma = noise.Sigma(points[k].wi, points[k].wo); });
+  tbb::parallel_for(size_t{0}, points.size(), [&](size_t k) {
+    points[k].sigma = noise.Sigma(points[k].wi, points[k].wo);
+    points[k].independent_sigma = noise.IndependentSigma(points[k].wi, points[k].wo);
+  });
   return points;
 }
 
@@ -121,6 +123,14 @@ Measurement Predicted(const Model& model, const std::vector<fitters::DesignPoint
   }
   if (designed) measurement.metadata[kWeightingKey] = kEqualWeighting;
   return measurement;
+}
+
+// The predicted standard errors of a fit to a measurement at `points`.
+fitters::PredictedErrors PredictFit(const Model& model,
+                                    const std::vector<fitters::DesignPoint>& points, bool designed,
+                                    const gonio::NoiseModel& noise) {
+  return fitters::PredictErrors(model, Predicted(model, points, designed),
+                                fitters::ExpectedNoiseAt(points, noise.CommonScaleVariance()));
 }
 
 struct Comparison {
@@ -273,12 +283,9 @@ Command AddPlanCommand(CLI::App& parent) {
                  standard.size(),
                  fitters::InformationLogDet(model, standard),
                  {}}};
-            rows[0].errors = fitters::PredictErrors(model, Predicted(model, plan, true),
-                                                    noise.CommonScaleVariance());
-            rows[1].errors = fitters::PredictErrors(model, Predicted(model, uniform, false),
-                                                    noise.CommonScaleVariance());
-            rows[2].errors = fitters::PredictErrors(model, Predicted(model, standard, false),
-                                                    noise.CommonScaleVariance());
+            rows[0].errors = PredictFit(model, plan, true, noise);
+            rows[1].errors = PredictFit(model, uniform, false, noise);
+            rows[2].errors = PredictFit(model, standard, false, noise);
             progress.Advance();
 
             WriteFileAtomically(options->out, [&](std::ostream& out) {
