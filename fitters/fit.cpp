@@ -85,7 +85,7 @@ FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared,
   const std::vector<FitSample> start_subset =
       Subsample(subset, std::min<size_t>(subset.size(), kStartSamples), options.seed + 1);
   int iterations = 0;
-  Variables best = BestStart(fitter, start_subset, &iterations);
+  Variables best = BestStart(fitter, start_subset, prepared.designed, &iterations);
 
   // 2. Refine the best start on the subsample. A robust loss re-estimates its scale from
   // each round's residuals: the first estimate is inflated by the bias the outliers caused.

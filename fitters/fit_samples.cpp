@@ -108,6 +108,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
     prepared.weighting = table.CellMeasureName();
   } else if (measurement.equal_weighting()) {
     prepared.weighting = "equal (a designed schedule: each sample stands for itself)";
+    prepared.designed = true;
   } else if (IsMerlGrid(measurement)) {
     tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
       samples[k].weight = MerlTable::CellMeasure(samples[k].wi, samples[k].wo);

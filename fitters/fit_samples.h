@@ -33,6 +33,7 @@ struct PreparedSamples {
   size_t skipped_missing = 0;  // flagged missing
   size_t skipped_invalid = 0;  // NaN/Inf values, or a direction at or below the horizon
   std::string weighting;       // how the solid-angle weights were found
+  bool designed = false;       // a designed schedule's (equal weights; may crowd onto a lobe)
 };
 
 // Selects the usable samples, weights each by the solid angle it represents and applies the

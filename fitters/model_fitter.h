@@ -31,12 +31,22 @@ struct Variables {
   double shape[1] = {0};
 };
 
-// One start of the multi-start: the lobe's width (an exponent or an alpha) and, for the
-// microfacet models, whether f0 comes from the data's peak or is a dielectric's 0.04.
+// One start of the multi-start: the lobe's width (an exponent or an alpha), for the microfacet
+// models whether f0 comes from the data's peak or is a dielectric's 0.04, and where in the
+// values' ranks the diffuse floor is read (a lobed model's value is never below rho_d / pi).
 struct FitStart {
   double shape = 1.0;
   bool f0_from_peak = true;
+  double floor_rank = 0.2;
 };
+
+// The floor ranks of the multi-start. A measurement spread over the hemisphere sees a lobe in
+// few of its samples, so its lower fifth is the diffuse floor, safe from noise and grazing
+// outliers. A designed schedule (`brdf plan`) can put most of its samples on the lobe: there the
+// lower fifth is the lobe itself, and a start with rho_d that high settles with rho_d at zero
+// (a local minimum). Its off-lobe samples are the lowest few percent.
+inline constexpr double kFloorRank = 0.2;
+inline constexpr double kLowFloorRank = 0.01;
 
 template <typename ModelType>
 class ModelFitter {
@@ -56,8 +66,9 @@ class ModelFitter {
   }
 
   // The multi-start's starts: exponents for a power-cosine lobe, alphas times two f0 guesses for
-  // a microfacet lobe, one start for lambert.
-  std::vector<FitStart> Starts() const {
+  // a microfacet lobe, one start for lambert; for a lobe measured on a `designed` schedule,
+  // every start again with the floor read from the lowest values.
+  std::vector<FitStart> Starts(bool designed) const {
     std::vector<FitStart> starts;
     if constexpr (!kLobed) {
       starts.push_back({});
@@ -68,6 +79,13 @@ class ModelFitter {
       }
     } else {
       for (double exponent : options_.start_exponents) starts.push_back({exponent, true});
+    }
+    if (kLobed && designed) {
+      const size_t count = starts.size();
+      for (size_t k = 0; k < count; ++k) {
+        starts.push_back(starts[k]);
+        starts.back().floor_rank = kLowFloorRank;
+      }
     }
     return starts;
   }
@@ -85,7 +103,7 @@ class ModelFitter {
       std::vector<double> values;
       values.reserve(samples.size());
       for (const FitSample& sample : samples) values.push_back(sample.value[c]);
-      const size_t floor_rank = kLobed ? values.size() / 5 : values.size() / 2;
+      const size_t floor_rank = RankIndex(values.size(), kLobed ? start.floor_rank : 0.5);
       std::nth_element(values.begin(), values.begin() + floor_rank, values.end());
       const double floor_value = std::max(values[floor_rank], 0.0);
       const double peak = *std::max_element(values.begin(), values.end());
@@ -268,6 +286,10 @@ class ModelFitter {
   // f0 = 0 and f0 = 1, Schlick being linear in f0), or a dielectric's 0.04 — the Fresnel rise
   // toward grazing then has to come from the data, which keeps a start from mistaking a
   // grazing peak for a metal.
+  static size_t RankIndex(size_t size, double rank) {
+    return std::min(size - 1, static_cast<size_t>(rank * static_cast<double>(size)));
+  }
+
   double MicrofacetF0Guess(const FitSample& peak_sample, double rho_d, int c,
                            const FitStart& start) const {
     if (!start.f0_from_peak) return 0.04;

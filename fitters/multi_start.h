@@ -15,15 +15,16 @@
 
 namespace brdf::fitters {
 
-// The best start's variables over `samples`; adds the iterations spent to `iterations`.
-// Throws ComputeError when every start fails (a non-finite cost).
+// The best start's variables over `samples` (of a `designed` schedule or not: Starts); adds the
+// iterations spent to `iterations`. Throws ComputeError when every start fails (a non-finite
+// cost).
 template <typename ModelType>
 Variables BestStart(const ModelFitter<ModelType>& fitter, const std::vector<FitSample>& samples,
-                    int* iterations) {
+                    bool designed, int* iterations) {
   const FitOptions& options = fitter.options();
   Variables best;
   double best_cost = std::numeric_limits<double>::infinity();
-  for (const FitStart& start : fitter.Starts()) {
+  for (const FitStart& start : fitter.Starts(designed)) {
     Variables trial = fitter.InitialGuess(samples, start);
     auto problem = fitter.BuildProblem(samples, &trial);
     const ceres::Solver::Summary summary =

@@ -139,6 +139,37 @@ TEST(Plan, IndependentSigmaIsTheScatterOfReadingsWithinARun) {
   EXPECT_LT(std::abs(e), 4 * std::sqrt(noise.CommonScaleVariance()));
 }
 
+// A plan aimed at a lobe's width puts nearly all its readings on the lobe: the lower fifth of its
+// values is the lobe, not the diffuse floor. The fit must still find rho_d (the multi-start
+// reads the floor low for a designed schedule; from the lower fifth it settled at rho_d = 0).
+TEST(Plan, FitOfASchedulePiledOnTheLobeFindsTheDiffuseFloor) {
+  const Model model = LoadModel("ggx:rho_d=0.1:f0=0.04:alpha=0.02");
+  std::vector<fitters::DesignPoint> points;
+  for (int theta = 10; theta <= 70; theta += 5) {
+    const Vec3 wi = SphericalDirection(DegToRad(theta), 0);
+    for (double d_theta : {-1.2, -0.6, 0.0, 0.6, 1.2}) {
+      for (double d_phi : {-1.0, 0.0, 1.0}) {
+        points.push_back(
+            {wi, SphericalDirection(DegToRad(theta + d_theta), kPi + DegToRad(d_phi))});
+      }
+    }
+    if (theta % 20 == 10) points.push_back({wi, SphericalDirection(DegToRad(30), kPi / 2)});
+  }
+  gonio::MeasureOptions measure;
+  measure.sample = "model:" + model.ToString();
+  measure.instrument.jitter_deg = 0;
+  // Apertures far below the lobe's width (about 1 degree), as docs/planning.md plans with.
+  measure.instrument.source_angular_radius_deg = 0.01;
+  measure.instrument.detector_solid_angle_sr = 1e-6;
+  const Measurement measurement = gonio::Measure(measure, DesignedSchedule(points));
+  ASSERT_TRUE(measurement.equal_weighting());
+  const fitters::FitResult fit = fitters::FitModel(measurement, "ggx", fitters::FitOptions{});
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(fit.model.params()[c], 0.1, 0.005) << "rho_d channel " << c;
+  }
+  EXPECT_NEAR(fit.model.params()[6], 0.02, 0.0005) << "alpha";
+}
+
 // Fits of `seeds` simulated measurements of a plan: the spread of each parameter against the
 // standard error predicted before any measurement. The sample standard deviation of n normal
 // values has a relative standard error of 1/sqrt(2 (n - 1)); the tolerance is 20 % plus
