@@ -246,16 +246,10 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
   const auto is_usable = [](const Sample& sample) {
     return !sample.missing && sample.value.allFinite() && sample.wi.z() > 0 && sample.wo.z() > 0;
   };
-  const size_t usable_count = static_cast<size_t>(
-      std::count_if(measurement.samples.begin(), measurement.samples.end(), is_usable));
-  std::vector<double> z;
-  std::vector<size_t> owner;  // the usable sample (in file order) each score belongs to
-  z.reserve(3 * usable_count);
-  owner.reserve(3 * usable_count);
-  size_t usable = 0;
-  for (size_t k = 0; k < measurement.samples.size(); ++k) {
+  // Calls visit(|z|) for each channel of the usable sample k that has a score. Two passes call
+  // it (the median, then the counts), so only the scores are held, not also their samples.
+  const auto for_each_score = [&](size_t k, auto&& visit) {
     const Sample& sample = measurement.samples[k];
-    if (!is_usable(sample)) continue;
     const Rgb f = model.Eval(sample.wi, sample.wo);
     for (int c = 0; c < 3; ++c) {
       double difference = sample.value[c] - f[c];
@@ -271,40 +265,49 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
         if (!(f[c] > 0)) continue;
         score = difference / f[c];
       }
-      z.push_back(std::abs(score));
-      owner.push_back(usable);
+      visit(std::abs(score));
     }
-    ++usable;
+  };
+  const size_t usable_count = static_cast<size_t>(
+      std::count_if(measurement.samples.begin(), measurement.samples.end(), is_usable));
+  std::vector<double> sorted;
+  sorted.reserve(3 * usable_count);
+  for (size_t k = 0; k < measurement.samples.size(); ++k) {
+    if (is_usable(measurement.samples[k])) {
+      for_each_score(k, [&](double score) { sorted.push_back(score); });
+    }
   }
-  check.residuals = z.size();
-  if (z.empty()) return check;
-  std::vector<double> sorted = z;
+  check.residuals = sorted.size();
+  if (sorted.empty()) return check;
   const size_t middle = sorted.size() / 2;
   std::nth_element(sorted.begin(), sorted.begin() + middle, sorted.end());
   check.robust_scale = 1.4826 * sorted[middle];
+  sorted = std::vector<double>();
   // The chi-square is taken over the inliers, so that a few outliers (reported on their own)
-  // do not pass for a misfit of the whole model.
+  // do not pass for a misfit of the whole model. Runs in file order (the order an instrument
+  // sweeps its detector): isolated outliers neighbour each other by chance, a misfit region in
+  // runs.
   double chi_square = 0;
-  size_t inliers = 0;
-  std::vector<bool> flagged(usable, false);
-  for (size_t i = 0; i < z.size(); ++i) {
-    const double score = z[i];
-    if (score > 0 && score > kOutlierScales * check.robust_scale) {
-      ++check.beyond_5_scale;
-      flagged[owner[i]] = true;
-    } else {
-      chi_square += score * score;
-      ++inliers;
-    }
+  size_t inliers = 0, usable = 0, pairs = 0;
+  bool previous_flagged = false;
+  for (size_t k = 0; k < measurement.samples.size(); ++k) {
+    if (!is_usable(measurement.samples[k])) continue;
+    bool flagged = false;
+    for_each_score(k, [&](double score) {
+      if (score > 0 && score > kOutlierScales * check.robust_scale) {
+        ++check.beyond_5_scale;
+        flagged = true;
+      } else {
+        chi_square += score * score;
+        ++inliers;
+      }
+    });
+    check.flagged_samples += flagged;
+    pairs += previous_flagged && flagged;
+    previous_flagged = flagged;
+    ++usable;
   }
   if (check.has_sigma && inliers > 0) check.reduced_chi_square = chi_square / inliers;
-  // Runs in file order (the order an instrument sweeps its detector): isolated outliers
-  // neighbour each other by chance, a misfit region in runs.
-  size_t pairs = 0;
-  for (size_t k = 0; k < usable; ++k) {
-    check.flagged_samples += flagged[k];
-    if (k + 1 < usable) pairs += flagged[k] && flagged[k + 1];
-  }
   check.adjacent_flagged_pairs = pairs;
   if (usable > 1 && check.flagged_samples > 0) {
     const double p = static_cast<double>(check.flagged_samples) / usable;
