@@ -44,9 +44,8 @@ FitMetrics ComputeMetrics(const Model& model, const std::vector<FitSample>& samp
           const FitSample& sample = samples[k];
           const Rgb f = model.Eval(sample.wi, sample.wo);
           const Rgb difference = f - sample.value;
-          const double c = sample.cos_theta_i;
-          const Rgb log_difference =
-              (1.0 + f * c).log() - (1.0 + (sample.value * c).max(-0.999)).log();
+          const double c = sample.cos_theta_i();
+          const Rgb log_difference = (1.0 + f * c).log() - LossTarget(Loss::kLog, sample.value, c);
           partial.weight += 3 * sample.weight;
           partial.l2 += sample.weight * difference.square().sum();
           partial.log += sample.weight * log_difference.square().sum();
