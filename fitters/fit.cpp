@@ -170,11 +170,13 @@ FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared, const F
                               std::to_string(all.size()));
   }
 
-  // Standard errors (covariance.h).
+  // Standard errors (covariance.h), from the streamed polish's last sums when they are at the
+  // final variables.
   Eigen::MatrixXd covariance;
   result.stderr_values.assign(params.size(), kNaN);
-  if (VariableCovariance(fitter, problem.get(), final_variables, &covariance,
-                         &result.stderr_note)) {
+  const SandwichSums* sums = finite && polish.sums_at_end ? &polish.sums : nullptr;
+  if (VariableCovariance(fitter, problem.get(), final_variables, &covariance, &result.stderr_note,
+                         sums)) {
     result.stderr_values = ParamStderr(fitter, final_variables, covariance);
     result.stderr_available = true;
   }
