@@ -88,6 +88,11 @@ void EvalCoat(const T* rho_d, const T* f0, const T& alpha, const T& coat_alpha, 
   }
 }
 
+// The data as the log loss compares them, log(1 + f cos theta_i).
+Rgb LogTarget(const fitters::FitSample& sample) {
+  return fitters::LossTarget(fitters::Loss::kLog, sample.value, sample.cos_theta_i());
+}
+
 // The log loss's residuals, as fitters/residual.h forms them for every model.
 // With `ordered`, the third block is alpha / alpha_c >= 1 rather than alpha: the coat is held
 // sharper than the base, as a clear coat over metal flakes is.
@@ -104,9 +109,10 @@ struct CoatResidual {
       const fitters::FitSample& sample = samples[k];
       T f[3];
       EvalCoat(rho_d, f0, base_alpha, coat_alpha[0], coat_f0[0], sample.wi, sample.wo, f);
+      const Rgb target = LogTarget(sample);
       for (int c = 0; c < 3; ++c) {
         residuals[3 * k + c] =
-            (log(T(1) + f[c] * sample.cos_theta_i) - sample.target[c]) * sample.scale[c];
+            (log(T(1) + f[c] * sample.cos_theta_i()) - target[c]) * sample.scale[c];
       }
     }
     return true;
@@ -161,9 +167,9 @@ double Rss(const std::vector<fitters::FitSample>& samples, const CoatParams& p) 
   for (const fitters::FitSample& sample : samples) {
     double f[3];
     EvalCoat(p.rho_d, p.f0, p.alpha, p.coat_alpha, p.coat_f0, sample.wi, sample.wo, f);
+    const Rgb target = LogTarget(sample);
     for (int c = 0; c < 3; ++c) {
-      const double r =
-          (std::log(1 + f[c] * sample.cos_theta_i) - sample.target[c]) * sample.scale[c];
+      const double r = (std::log(1 + f[c] * sample.cos_theta_i()) - target[c]) * sample.scale[c];
       rss += r * r;
     }
   }
@@ -176,9 +182,9 @@ double LogRmse(const std::vector<fitters::FitSample>& samples, const CoatParams&
   for (const fitters::FitSample& sample : samples) {
     double f[3];
     EvalCoat(p.rho_d, p.f0, p.alpha, p.coat_alpha, p.coat_f0, sample.wi, sample.wo, f);
+    const Rgb target = LogTarget(sample);
     for (int c = 0; c < 3; ++c) {
-      const double d = std::log(1 + f[c] * sample.cos_theta_i) -
-                       std::log(1 + std::max(sample.value[c] * sample.cos_theta_i, -0.999));
+      const double d = std::log(1 + f[c] * sample.cos_theta_i()) - target[c];
       sum += sample.weight * d * d;
     }
     weight += 3 * sample.weight;
@@ -276,9 +282,9 @@ int main(int argc, char** argv) {
     double ggx_rss = 0;
     for (const fitters::FitSample& sample : prepared.samples) {
       const Rgb f = ggx.model.Eval(sample.wi, sample.wo);
+      const Rgb target = LogTarget(sample);
       for (int c = 0; c < 3; ++c) {
-        const double r =
-            (std::log(1 + f[c] * sample.cos_theta_i) - sample.target[c]) * sample.scale[c];
+        const double r = (std::log(1 + f[c] * sample.cos_theta_i()) - target[c]) * sample.scale[c];
         ggx_rss += r * r;
       }
     }

@@ -213,6 +213,20 @@ Sums SumOverBlocks(const ModelFitter<ModelType>& fitter, ceres::Problem* problem
       combine);
 }
 
+// A = sum J_i^T J_i and B = sum J_i^T J_i e_i over residual rows i: the sandwich's two sums.
+struct SandwichSums {
+  Eigen::MatrixXd a, b;
+};
+
+// Adds a block's rows to the lower triangles of A = sum J_i^T J_i and B = sum J_i^T J_i e_i
+// (one e_i >= 0 per row: a squared residual or the expectation of one).
+inline void AddSandwichSums(const BlockJacobian& jacobian, const Eigen::VectorXd& e,
+                            Eigen::MatrixXd* a, Eigen::MatrixXd* b) {
+  const BlockJacobian weighted = e.cwiseSqrt().asDiagonal() * jacobian;  // sqrt(e) J
+  a->selfadjointView<Eigen::Lower>().rankUpdate(jacobian.transpose());
+  b->selfadjointView<Eigen::Lower>().rankUpdate(weighted.transpose());
+}
+
 // A = sum J_i^T J_i and B = sum J_i^T J_i e_i over the residual rows i, with e_i the squared
 // residual itself or, when `expected_squared` is given, its expectation (one per row, in the
 // problem's order): then A^-1 B A^-1 is the covariance a fit of these samples will have, before
@@ -221,25 +235,19 @@ template <typename ModelType>
 void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem, const Variables& v,
                   const std::vector<double>* expected_squared, Eigen::MatrixXd* a,
                   Eigen::MatrixXd* b) {
-  struct Sums {
-    Eigen::MatrixXd a, b;
-  };
   const int n = fitter.FreeVariables();
   const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
-  const Sums sums = SumOverBlocks(
-      fitter, problem, v, Sums{zero, zero},
-      [&](Sums& partial, int64_t first_row, const Eigen::VectorXd& residuals,
+  const SandwichSums sums = SumOverBlocks(
+      fitter, problem, v, SandwichSums{zero, zero},
+      [&](SandwichSums& partial, int64_t first_row, const Eigen::VectorXd& residuals,
           const BlockJacobian& jacobian) {
         const Eigen::VectorXd e = expected_squared != nullptr
                                       ? Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
                                             expected_squared->data() + first_row, residuals.size()))
                                       : Eigen::VectorXd(residuals.array().square());
-        // sqrt(e) J: e >= 0, a square or the expectation of one.
-        const BlockJacobian weighted = e.cwiseSqrt().asDiagonal() * jacobian;
-        partial.a.template selfadjointView<Eigen::Lower>().rankUpdate(jacobian.transpose());
-        partial.b.template selfadjointView<Eigen::Lower>().rankUpdate(weighted.transpose());
+        AddSandwichSums(jacobian, e, &partial.a, &partial.b);
       },
-      [](Sums x, const Sums& y) {
+      [](SandwichSums x, const SandwichSums& y) {
         x.a += y.a;
         x.b += y.b;
         return x;
@@ -249,11 +257,14 @@ void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
 }
 
 // Covariance of the fitter's variables (d, s, shape) at `v`; held variables carry NaN on the
-// diagonal. False, with `note`, when A is rank-deficient.
+// diagonal. False, with `note`, when A is rank-deficient. `sums`, when given, are A and B at `v`
+// already (JacobianSums' or the streamed polish's last linearization there) and save the pass.
 template <typename ModelType>
 bool VariableCovariance(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
-                        const Variables& v, Eigen::MatrixXd* covariance, std::string* note) {
+                        const Variables& v, Eigen::MatrixXd* covariance, std::string* note,
+                        const SandwichSums* sums = nullptr) {
   const std::vector<bool> held = HeldVariables(fitter, v, note);
+  if (sums != nullptr) return SandwichCovariance(sums->a, sums->b, held, covariance, note);
   Eigen::MatrixXd a, b;
   JacobianSums(fitter, problem, v, nullptr, &a, &b);
   return SandwichCovariance(a, b, held, covariance, note);

@@ -1,8 +1,13 @@
 #include "fitters/diagnostics.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <vector>
 
 #include "core/angles.h"
 #include "core/format.h"
@@ -59,6 +64,33 @@ constexpr double kClusteringScore = 5.0;
 // so the check allows them to be off by a factor of two: it warns when the rms misfit is more
 // than twice the stated uncertainty (chi-square > 4).
 constexpr double kMaxReducedChiSquare = 4.0;
+
+// Marks a channel without a residual score (scores are absolute values: never negative).
+constexpr double kNoScore = -1.0;
+
+// The k-th smallest (from 0) of the scores that are not kNoScore, exactly, without reordering or
+// copying them: a radix selection, 16 bits at a time from the top, on the IEEE bit patterns,
+// which order non-negative doubles as their values.
+double KthSmallestScore(const std::vector<double>& scores, size_t k) {
+  uint64_t prefix = 0, mask = 0;
+  std::vector<size_t> histogram(size_t{1} << 16);
+  for (int shift = 48; shift >= 0; shift -= 16) {
+    std::fill(histogram.begin(), histogram.end(), 0);
+    for (double score : scores) {
+      if (std::signbit(score)) continue;
+      uint64_t bits;
+      std::memcpy(&bits, &score, sizeof bits);
+      if ((bits & mask) == prefix) ++histogram[(bits >> shift) & 0xFFFF];
+    }
+    uint64_t bucket = 0;
+    while (k >= histogram[bucket]) k -= histogram[bucket++];
+    prefix |= bucket << shift;
+    mask |= uint64_t{0xFFFF} << shift;
+  }
+  double value;
+  std::memcpy(&value, &prefix, sizeof value);
+  return value;
+}
 
 // x = -e ln cos(offset) of one sample: 0 at the lobe's centre, infinity where the lobe is 0.
 double LobeExponentTerm(LobeFrame frame, double exponent, const Vec3& wi, const Vec3& wo) {
@@ -246,16 +278,17 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
   const auto is_usable = [](const Sample& sample) {
     return !sample.missing && sample.value.allFinite() && sample.wi.z() > 0 && sample.wo.z() > 0;
   };
-  const size_t usable_count = static_cast<size_t>(
-      std::count_if(measurement.samples.begin(), measurement.samples.end(), is_usable));
-  std::vector<double> z;
-  std::vector<size_t> owner;  // the usable sample (in file order) each score belongs to
-  z.reserve(3 * usable_count);
-  owner.reserve(3 * usable_count);
-  size_t usable = 0;
+  std::vector<size_t> usable_samples;  // file indices
+  usable_samples.reserve(static_cast<size_t>(
+      std::count_if(measurement.samples.begin(), measurement.samples.end(), is_usable)));
   for (size_t k = 0; k < measurement.samples.size(); ++k) {
+    if (is_usable(measurement.samples[k])) usable_samples.push_back(k);
+  }
+  // |z| of each channel of each usable sample, in file order; kNoScore where a channel has none.
+  std::vector<double> scores(3 * usable_samples.size(), kNoScore);
+  tbb::parallel_for(size_t{0}, usable_samples.size(), [&](size_t u) {
+    const size_t k = usable_samples[u];
     const Sample& sample = measurement.samples[k];
-    if (!is_usable(sample)) continue;
     const Rgb f = model.Eval(sample.wi, sample.wo);
     for (int c = 0; c < 3; ++c) {
       double difference = sample.value[c] - f[c];
@@ -271,40 +304,39 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
         if (!(f[c] > 0)) continue;
         score = difference / f[c];
       }
-      z.push_back(std::abs(score));
-      owner.push_back(usable);
+      scores[3 * u + c] = std::abs(score);
     }
-    ++usable;
-  }
-  check.residuals = z.size();
-  if (z.empty()) return check;
-  std::vector<double> sorted = z;
-  const size_t middle = sorted.size() / 2;
-  std::nth_element(sorted.begin(), sorted.begin() + middle, sorted.end());
-  check.robust_scale = 1.4826 * sorted[middle];
+  });
+  check.residuals = static_cast<size_t>(
+      std::count_if(scores.begin(), scores.end(), [](double z) { return !std::signbit(z); }));
+  if (check.residuals == 0) return check;
+  check.robust_scale = 1.4826 * KthSmallestScore(scores, check.residuals / 2);
   // The chi-square is taken over the inliers, so that a few outliers (reported on their own)
-  // do not pass for a misfit of the whole model.
+  // do not pass for a misfit of the whole model. Runs in file order (the order an instrument
+  // sweeps its detector): isolated outliers neighbour each other by chance, a misfit region in
+  // runs.
   double chi_square = 0;
-  size_t inliers = 0;
-  std::vector<bool> flagged(usable, false);
-  for (size_t i = 0; i < z.size(); ++i) {
-    const double score = z[i];
-    if (score > 0 && score > kOutlierScales * check.robust_scale) {
-      ++check.beyond_5_scale;
-      flagged[owner[i]] = true;
-    } else {
-      chi_square += score * score;
-      ++inliers;
+  size_t inliers = 0, pairs = 0;
+  const size_t usable = usable_samples.size();
+  bool previous_flagged = false;
+  for (size_t u = 0; u < usable; ++u) {
+    bool flagged = false;
+    for (int c = 0; c < 3; ++c) {
+      const double score = scores[3 * u + c];
+      if (std::signbit(score)) continue;
+      if (score > 0 && score > kOutlierScales * check.robust_scale) {
+        ++check.beyond_5_scale;
+        flagged = true;
+      } else {
+        chi_square += score * score;
+        ++inliers;
+      }
     }
+    check.flagged_samples += flagged;
+    pairs += previous_flagged && flagged;
+    previous_flagged = flagged;
   }
   if (check.has_sigma && inliers > 0) check.reduced_chi_square = chi_square / inliers;
-  // Runs in file order (the order an instrument sweeps its detector): isolated outliers
-  // neighbour each other by chance, a misfit region in runs.
-  size_t pairs = 0;
-  for (size_t k = 0; k < usable; ++k) {
-    check.flagged_samples += flagged[k];
-    if (k + 1 < usable) pairs += flagged[k] && flagged[k + 1];
-  }
   check.adjacent_flagged_pairs = pairs;
   if (usable > 1 && check.flagged_samples > 0) {
     const double p = static_cast<double>(check.flagged_samples) / usable;

@@ -51,8 +51,7 @@ std::vector<FitSample> WhitenedSamples(const Model& model, const std::vector<Des
     FitSample& sample = samples[k];
     sample.wi = points[k].wi;
     sample.wo = points[k].wo;
-    sample.cos_theta_i = sample.wi.z();
-    sample.value = sample.target = model.Eval(sample.wi, sample.wo);
+    sample.value = model.Eval(sample.wi, sample.wo);
     for (int c = 0; c < 3; ++c) {
       const double sigma = points[k].sigma[c];
       if (!(sigma > 0) || !std::isfinite(sigma)) {

@@ -44,9 +44,8 @@ FitMetrics ComputeMetrics(const Model& model, const std::vector<FitSample>& samp
           const FitSample& sample = samples[k];
           const Rgb f = model.Eval(sample.wi, sample.wo);
           const Rgb difference = f - sample.value;
-          const double c = sample.cos_theta_i;
-          const Rgb log_difference =
-              (1.0 + f * c).log() - (1.0 + (sample.value * c).max(-0.999)).log();
+          const double c = sample.cos_theta_i();
+          const Rgb log_difference = (1.0 + f * c).log() - LossTarget(Loss::kLog, sample.value, c);
           partial.weight += 3 * sample.weight;
           partial.l2 += sample.weight * difference.square().sum();
           partial.log += sample.weight * log_difference.square().sum();
@@ -73,34 +72,54 @@ bool Converged(const ceres::Solver::Summary& summary) {
          summary.termination_type == ceres::USER_SUCCESS;
 }
 
+// Steps 1 and 2 of a fit on the stratified subsample `subset` (of a `designed` schedule or
+// not: ModelFitter::Starts): the multi-start and the refinement of its best start
+// (SubsampleOptimum).
 template <typename ModelType>
-FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared,
-                 const FitOptions& options) {
-  const ModelFitter<ModelType> fitter(options);
-  const std::vector<FitSample>& all = prepared.samples;
-  const std::vector<FitSample> subset = Subsample(all, options.max_samples, options.seed);
-  const bool subsampled = subset.size() < all.size();
-
+SubsampleOptimum FitSubsample(const ModelFitter<ModelType>& fitter,
+                              const std::vector<FitSample>& subset, bool designed) {
+  const FitOptions& options = fitter.options();
+  SubsampleOptimum optimum;
+  optimum.found = true;
   // 1. Multi-start (multi_start.h) on a smaller subsample, without a robust loss.
   const std::vector<FitSample> start_subset =
       Subsample(subset, std::min<size_t>(subset.size(), kStartSamples), options.seed + 1);
-  int iterations = 0;
-  Variables best = BestStart(fitter, start_subset, prepared.designed, &iterations);
+  Variables& best = optimum.variables;
+  best = BestStart(fitter, start_subset, designed, &optimum.iterations);
 
   // 2. Refine the best start on the subsample. A robust loss re-estimates its scale from
   // each round's residuals: the first estimate is inflated by the bias the outliers caused.
-  {
-    auto problem = fitter.BuildProblem(subset, &best);
-    iterations +=
-        static_cast<int>(fitter.Solve(problem.get(), options.max_iterations).iterations.size());
-    for (int round = 0; options.robust != Robust::kNone && round < kRobustRounds; ++round) {
-      double scale = 0;  // estimated afresh
-      const std::vector<FitSample> weighted = fitter.Reweight(subset, best, &scale);
-      auto robust_problem = fitter.BuildProblem(weighted, &best);
-      iterations += static_cast<int>(
-          fitter.Solve(robust_problem.get(), options.max_iterations).iterations.size());
-    }
+  auto problem = fitter.BuildProblem(subset, &best);
+  optimum.iterations +=
+      static_cast<int>(fitter.Solve(problem.get(), options.max_iterations).iterations.size());
+  for (int round = 0; options.robust != Robust::kNone && round < kRobustRounds; ++round) {
+    double scale = 0;  // estimated afresh
+    const std::vector<FitSample> weighted = fitter.Reweight(subset, best, &scale);
+    auto robust_problem = fitter.BuildProblem(weighted, &best);
+    optimum.iterations += static_cast<int>(
+        fitter.Solve(robust_problem.get(), options.max_iterations).iterations.size());
   }
+  return optimum;
+}
+
+template <typename ModelType>
+FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared, const FitOptions& options,
+                 SubsampleOptimum* given) {
+  const ModelFitter<ModelType> fitter(options);
+  const std::vector<FitSample>& all = prepared.samples;
+  // Subsample keeps every sample of a set no larger than max_samples.
+  const bool subsampled = options.max_samples != 0 && all.size() > options.max_samples;
+  const size_t subset_size = subsampled ? options.max_samples : all.size();
+  SubsampleOptimum optimum;
+  if (given != nullptr && given->found) {
+    optimum = *given;
+  } else {
+    optimum =
+        FitSubsample(fitter, Subsample(all, options.max_samples, options.seed), prepared.designed);
+    if (given != nullptr) *given = optimum;
+  }
+  const Variables& best = optimum.variables;
+  int iterations = optimum.iterations;
 
   // 3. Polish on every sample (the final solve, whose convergence is reported).
   Variables final_variables = best;
@@ -149,15 +168,17 @@ FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared,
   result.metrics = ComputeMetrics(result.model, all);
   if (subsampled) {
     result.warnings.push_back("started from a stratified subsample of " +
-                              std::to_string(subset.size()) + " samples, then polished on all " +
+                              std::to_string(subset_size) + " samples, then polished on all " +
                               std::to_string(all.size()));
   }
 
-  // Standard errors (covariance.h).
+  // Standard errors (covariance.h), from the streamed polish's last sums when they are at the
+  // final variables.
   Eigen::MatrixXd covariance;
   result.stderr_values.assign(params.size(), kNaN);
-  if (VariableCovariance(fitter, problem.get(), final_variables, &covariance,
-                         &result.stderr_note)) {
+  const SandwichSums* sums = finite && polish.sums_at_end ? &polish.sums : nullptr;
+  if (VariableCovariance(fitter, problem.get(), final_variables, &covariance, &result.stderr_note,
+                         sums)) {
     result.stderr_values = ParamStderr(fitter, final_variables, covariance);
     result.stderr_available = true;
   }
@@ -219,7 +240,7 @@ std::string FitResult::Summary() const {
 }
 
 FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string& model_name,
-                             const FitOptions& options) {
+                             const FitOptions& options, SubsampleOptimum* optimum) {
   options.Validate();
   // Ceres reports rank deficiency through glog warnings; the fit report says it in words.
   static const bool quiet_ceres = [] {
@@ -234,7 +255,7 @@ FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string&
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   FitResult result = arena.execute([&] {
     return VisitModelType(model_name, [&](auto model_type) {
-      return RunFit<decltype(model_type)>(info, prepared, options);
+      return RunFit<decltype(model_type)>(info, prepared, options, optimum);
     });
   });
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

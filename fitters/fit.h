@@ -86,14 +86,35 @@ struct FitResult {
   std::string Summary() const;
 };
 
+// The fitter's free variables (parameterization.h): d[3], s[1 or 3] (s[0] alone when the lobe
+// is grey) and shape[1]; lambert uses d alone.
+struct Variables {
+  double d[3] = {0, 0, 0};
+  double s[3] = {0, 0, 0};
+  double shape[1] = {0};
+};
+
+// A fit's optimum on its stratified subsample (steps 1 and 2 of FitPreparedSamples: the
+// multi-start and the refinement), and the solver iterations spent reaching it. It depends only
+// on the model, the options and Subsample(samples, max_samples, seed), so `--model auto`, whose
+// candidates compete on that very subsample, hands the winner's to its fit on every sample
+// instead of finding it a second time.
+struct SubsampleOptimum {
+  bool found = false;
+  Variables variables;
+  int iterations = 0;
+};
+
 // The whole fit: PrepareSamples, FitPreparedSamples, FinishFit.
 FitResult FitModel(const Measurement& measurement, const std::string& model_name,
                    const FitOptions& options);
 
 // The fit alone, on PrepareSamples(measurement, options.loss): parameters, standard errors,
-// metrics and BIC, without the energy check and the diagnostics.
+// metrics and BIC, without the energy check and the diagnostics. `optimum`, when given and
+// found, is where the polish starts (it must come from a fit of the same model and options
+// whose samples had the same Subsample); when given and not found, it receives this fit's.
 FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string& model_name,
-                             const FitOptions& options);
+                             const FitOptions& options, SubsampleOptimum* optimum = nullptr);
 // The energy check (energy_check.h) and the warnings (diagnostics.h) of a fit.
 void FinishFit(const Measurement& measurement, const PreparedSamples& prepared, FitResult* result);
 

@@ -66,7 +66,7 @@ Loss ParseLoss(const std::string& name) { return ParseEnum(kLossNames, name, "lo
 
 const char* LossName(Loss loss) { return NameOf(kLossNames, loss); }
 
-PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
+PreparedSamples PrepareSamples(const Measurement& measurement, Loss /*loss*/) {
   PreparedSamples prepared;
   std::vector<size_t> source_index;
   const auto usable = [](const Sample& sample) {
@@ -89,7 +89,6 @@ PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
     FitSample fit_sample;
     fit_sample.wi = sample.wi;
     fit_sample.wo = sample.wo;
-    fit_sample.cos_theta_i = sample.wi.z();
     fit_sample.value = sample.value;
     prepared.samples.push_back(fit_sample);
     if (per_sample_columns) source_index.push_back(k);
@@ -164,19 +163,6 @@ PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
         if (sigma[c] > 0 && mean_sigma[c] > 0) sample.scale[c] *= mean_sigma[c] / sigma[c];
       }
     }
-    switch (loss) {
-      case Loss::kL2:
-        sample.target = sample.value;
-        break;
-      case Loss::kLog:
-        // Values below -1/cos would have no logarithm; out-of-gamut RGB is only slightly
-        // negative, so clamping there changes nothing real.
-        sample.target = (1.0 + (sample.value * sample.cos_theta_i).max(-0.999)).log();
-        break;
-      case Loss::kCosineL2:
-        sample.target = sample.value * sample.cos_theta_i;
-        break;
-    }
   }
   return prepared;
 }
@@ -188,11 +174,20 @@ std::vector<FitSample> Subsample(const std::vector<FitSample>& samples, size_t m
   std::iota(order.begin(), order.end(), 0);
   const size_t peak_count = std::min(samples.size() / 100, max_samples / 2);
   // Peak: the brightest samples, all kept with their own weight.
+  std::vector<double> luminance(samples.size());
+  for (size_t k = 0; k < samples.size(); ++k) luminance[k] = Luminance(samples[k].value);
   std::nth_element(order.begin(), order.begin() + peak_count, order.end(), [&](size_t a, size_t b) {
-    const double la = Luminance(samples[a].value), lb = Luminance(samples[b].value);
+    const double la = luminance[a], lb = luminance[b];
     return la > lb || (la == lb && a < b);
   });
-  std::sort(order.begin() + peak_count, order.end());  // deterministic order for the draw
+  // The rest in ascending index order (a deterministic order for the draw), rebuilt in one
+  // pass instead of sorted.
+  std::vector<bool> in_peak(samples.size(), false);
+  for (size_t k = 0; k < peak_count; ++k) in_peak[order[k]] = true;
+  size_t next = peak_count;
+  for (size_t index = 0; index < samples.size(); ++index) {
+    if (!in_peak[index]) order[next++] = index;
+  }
   std::vector<FitSample> subset;
   subset.reserve(max_samples);
   for (size_t k = 0; k < peak_count; ++k) subset.push_back(samples[order[k]]);

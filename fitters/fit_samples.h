@@ -19,14 +19,31 @@ enum class Loss {
 Loss ParseLoss(const std::string& name);
 const char* LossName(Loss loss);
 
+// 104 bytes: a MERL table has a million of them. What follows from these (cos theta_i, the
+// loss's target) is computed where it is used rather than stored.
 struct FitSample {
   Vec3 wi, wo;
-  double cos_theta_i = 0;
-  Rgb target = Rgb::Zero();  // the data, transformed by the loss (log loss: log(1 + f cos theta_i))
-  Rgb value = Rgb::Zero();   // the data in sr^-1
-  Rgb scale = Rgb::Ones();   // sqrt(weight) / sigma per channel: the residual multiplier
-  double weight = 1;         // solid-angle weight times the file's weight (mean 1 over the set)
+  Rgb value = Rgb::Zero();  // the data in sr^-1
+  Rgb scale = Rgb::Ones();  // sqrt(weight) / sigma per channel: the residual multiplier
+  double weight = 1;        // solid-angle weight times the file's weight (mean 1 over the set)
+
+  double cos_theta_i() const { return wi.z(); }
 };
+
+// The data as the loss compares them: f (l2), log(1 + f cos theta_i) (log; values below
+// -1/cos theta_i would have no logarithm, and out-of-gamut RGB is only slightly negative, so
+// clamping there changes nothing real) or f cos theta_i (cosine-l2).
+inline Rgb LossTarget(Loss loss, const Rgb& value, double cos_theta_i) {
+  switch (loss) {
+    case Loss::kLog:
+      return (1.0 + (value * cos_theta_i).max(-0.999)).log();
+    case Loss::kCosineL2:
+      return value * cos_theta_i;
+    case Loss::kL2:
+      break;
+  }
+  return value;
+}
 
 struct PreparedSamples {
   std::vector<FitSample> samples;
@@ -36,8 +53,7 @@ struct PreparedSamples {
   bool designed = false;       // a designed schedule's (equal weights; may crowd onto a lobe)
 };
 
-// Selects the usable samples, weights each by the solid angle it represents and applies the
-// loss's transform. Weights:
+// Selects the usable samples and weights each by the solid angle it represents. Weights:
 //  * MERL grid: the exact measure of the cell, 4 cos(theta_d) sin(theta_h) sin(theta_d)
 //    dtheta_h dtheta_d dphi_d (dwi dwo in half/difference angles; Rusinkiewicz 1998), with
 //    the sqrt-warped theta_h widths.
@@ -46,7 +62,8 @@ struct PreparedSamples {
 //  * scattered data: per incidence direction, the area of the detector directions closest to
 //    each sample, estimated from the distance to its k-th nearest neighbour (k = 4).
 // Weights are normalized to mean 1; the file's weight column multiplies them and its sigma
-// columns divide the residuals.
+// columns divide the residuals. The samples are the same for every loss (each loss transforms
+// the data where it compares them, LossTarget); the loss names the fit they are prepared for.
 PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss);
 
 // A deterministic stratified subsample of at most `max_samples`: every sample in the top 1% by

@@ -24,13 +24,6 @@ namespace brdf::fitters {
 // Jacobian stays a few MB.
 inline constexpr size_t kSamplesPerSolverBlock = size_t{1} << 16;
 
-// The fitter's free variables (parameterization.h); s[0] alone when the lobe is grey.
-struct Variables {
-  double d[3] = {0, 0, 0};
-  double s[3] = {0, 0, 0};
-  double shape[1] = {0};
-};
-
 // One start of the multi-start: the lobe's width (an exponent or an alpha), for the microfacet
 // models whether f0 comes from the data's peak or is a dielectric's 0.04, and where in the
 // values' ranks the diffuse floor is read (a lobed model's value is never below rho_d / pi).

@@ -44,14 +44,16 @@ class BatchResidual {
       const FitSample& sample = samples_[k];
       // Directions stay plain doubles: only the parameters carry derivatives.
       const RgbT<T> f = ModelType::template Eval<T>(params, sample.wi, sample.wo);
+      const double cos_theta_i = sample.cos_theta_i();
+      const Rgb target = LossTarget(loss_, sample.value, cos_theta_i);
       for (int c = 0; c < 3; ++c) {
         T predicted = f[c];
         if (loss_ == Loss::kLog) {
-          predicted = log(T(1) + f[c] * sample.cos_theta_i);
+          predicted = log(T(1) + f[c] * cos_theta_i);
         } else if (loss_ == Loss::kCosineL2) {
-          predicted = f[c] * sample.cos_theta_i;
+          predicted = f[c] * cos_theta_i;
         }
-        residuals[3 * k + c] = (predicted - sample.target[c]) * sample.scale[c];
+        residuals[3 * k + c] = (predicted - target[c]) * sample.scale[c];
       }
     }
     return true;

@@ -1,7 +1,11 @@
 #include "fitters/select.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <optional>
 
 #include "core/format.h"
@@ -33,14 +37,38 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
   if (on_subsample) {
     subsample.samples = Subsample(prepared.samples, options.max_samples, options.seed);
     subsample.weighting = prepared.weighting;
+    subsample.designed = prepared.designed;
   }
   const PreparedSamples& contest = on_subsample ? subsample : prepared;
+  // The candidates are fitted side by side: each fit's own parallel loops leave cores idle
+  // between their solver steps, and no fit depends on another or on the thread count, so the
+  // results, kept in candidate order, are those of fitting them one after another (an error is
+  // the first candidate's in that order). Each candidate's optimum on the subsample is kept:
+  // the winner's fit on every sample starts from it instead of running the multi-start again
+  // on the same subsample (fit.h).
+  const std::vector<std::string>& names = AutoCandidates();
+  std::vector<std::optional<FitResult>> candidate_fits(names.size());
+  std::vector<SubsampleOptimum> optima(names.size());
+  std::vector<std::exception_ptr> errors(names.size());
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(size_t{0}, names.size(), [&](size_t k) {
+      try {
+        candidate_fits[k].emplace(FitPreparedSamples(contest, names[k], options, &optima[k]));
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    });
+  });
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
   std::vector<FitResult> fits;
   size_t best = 0;
-  for (const std::string& name : AutoCandidates()) {
-    FitResult fit = FitPreparedSamples(contest, name, options);
+  for (size_t k = 0; k < names.size(); ++k) {
+    FitResult& fit = *candidate_fits[k];
     selection->candidates.push_back(
-        {name, fit.bic, fit.metrics.rmse, fit.free_variables, fit.converged});
+        {names[k], fit.bic, fit.metrics.rmse, fit.free_variables, fit.converged});
     // A clearly lower BIC wins; ties (to rounding) keep the earlier, simpler candidate. This
     // matters: blinn-phong and blinn-phong-exact span the same family of lobes (they differ
     // by a constant factor that rho_s absorbs), so they reach the same BIC.
@@ -49,7 +77,9 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
       best = fits.size() - 1;
     }
   }
-  if (on_subsample) fits[best] = FitPreparedSamples(prepared, fits[best].model.name(), options);
+  if (on_subsample) {
+    fits[best] = FitPreparedSamples(prepared, fits[best].model.name(), options, &optima[best]);
+  }
   // The energy check and the diagnostics cost more than many fits of a small file: only the
   // chosen fit gets them, unless the caller keeps every fit.
   for (size_t k = 0; k < fits.size(); ++k) {

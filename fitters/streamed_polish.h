@@ -35,6 +35,11 @@ struct PolishSummary {
   double final_cost = 0;
   bool converged = false;
   std::string report;  // one line, for the fit report's "termination"
+  // The sandwich sums of the last linearization (covariance.h), when it was at the returned
+  // variables (every ending but the function tolerance's, which stops at a point it has only
+  // evaluated): the covariance there needs no pass of its own.
+  bool sums_at_end = false;
+  SandwichSums sums;
 };
 
 namespace polish_detail {
@@ -87,18 +92,21 @@ struct Normal {
   Eigen::MatrixXd a;  // J^T J
   Eigen::VectorXd g;  // J^T r, the gradient of the cost
   double cost = 0;
+  Eigen::MatrixXd b;  // J^T diag(r^2) J, the sandwich's other sum, for the covariance
 };
 
 template <typename ModelType>
 Normal Linearize(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
                  const Variables& v) {
   const int n = fitter.FreeVariables();
-  Normal zero{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n), 0.0};
+  Normal zero{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n), 0.0,
+              Eigen::MatrixXd::Zero(n, n)};
   Normal sums = SumOverBlocks(
       fitter, problem, v, zero,
       [](Normal& partial, int64_t, const Eigen::VectorXd& residuals,
          const BlockJacobian& jacobian) {
-        partial.a.selfadjointView<Eigen::Lower>().rankUpdate(jacobian.transpose());
+        AddSandwichSums(jacobian, Eigen::VectorXd(residuals.array().square()), &partial.a,
+                        &partial.b);
         partial.g.noalias() += jacobian.transpose() * residuals;
         partial.cost += 0.5 * residuals.squaredNorm();
       },
@@ -106,9 +114,11 @@ Normal Linearize(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
         x.a += y.a;
         x.g += y.g;
         x.cost += y.cost;
+        x.b += y.b;
         return x;
       });
   sums.a = sums.a.selfadjointView<Eigen::Lower>();
+  sums.b = sums.b.selfadjointView<Eigen::Lower>();
   return sums;
 }
 
@@ -125,6 +135,7 @@ PolishSummary StreamedPolish(const ModelFitter<ModelType>& fitter, ceres::Proble
   const Eigen::Map<const Eigen::VectorXd> upper(bounds.upper.data(), n);
   Eigen::VectorXd x = Flatten(fitter, *v);
   Normal current = Linearize(fitter, problem, *v);
+  bool linearized_at_x = true;
   PolishSummary summary;
   summary.initial_cost = current.cost;
   std::string reason = "maximum iterations reached";
@@ -167,6 +178,7 @@ PolishSummary StreamedPolish(const ModelFitter<ModelType>& fitter, ceres::Proble
       shrink = 2.0;
       if (decrease <= kFunctionTolerance * current.cost) {
         current.cost = trial_cost;
+        linearized_at_x = false;
         summary.converged = true;
         reason = "function tolerance";
         break;
@@ -183,6 +195,10 @@ PolishSummary StreamedPolish(const ModelFitter<ModelType>& fitter, ceres::Proble
     }
   }
   summary.final_cost = current.cost;
+  if (linearized_at_x) {
+    summary.sums_at_end = true;
+    summary.sums = {current.a, current.b};
+  }
   summary.report = "streamed Levenberg-Marquardt (normal equations summed over the rows): " +
                    std::to_string(summary.iterations) + " iterations, cost " +
                    FormatNumber(summary.initial_cost, 6) + " -> " +

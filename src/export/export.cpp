@@ -81,7 +81,6 @@ MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSamp
   for (size_t k = 0; k < samples.size(); ++k) {
     fitters::FitSample sample = samples[k];
     sample.value = fit_values[k];
-    sample.target = (1.0 + sample.value * sample.cos_theta_i).log();
     sample.scale = Rgb::Constant(std::sqrt(sample.weight));
     prepared.samples.push_back(sample);
   }
@@ -190,7 +189,6 @@ ExportSamples HemisphereGridSamples(double step_deg) {
         fitters::FitSample sample;
         sample.wi = wi;
         sample.wo = SphericalDirection(DegToRad(o * step_deg), DegToRad(p * step_deg));
-        sample.cos_theta_i = wi.z();
         result.samples.push_back(sample);
       }
     }
@@ -215,7 +213,7 @@ ExportError MeasureExportError(const std::function<Rgb(const Vec3&, const Vec3&)
   for (size_t k = 0; k < samples.size(); ++k) {
     const fitters::FitSample& sample = samples[k];
     const Rgb f = renderer(sample.wi, sample.wo);
-    const double c = sample.cos_theta_i;
+    const double c = sample.cos_theta_i();
     const Rgb log_difference = (1.0 + f * c).log() - (1.0 + fit_values[k] * c).log();
     sum += sample.weight * log_difference.square().sum();
     weight += 3 * sample.weight;

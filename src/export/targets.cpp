@@ -41,7 +41,7 @@ double MappingLogRmse(const std::function<Rgb(const Vec3&, const Vec3&)>& render
   for (size_t k = 0; k < input.samples.size(); ++k) {
     const fitters::FitSample& sample = input.samples[k];
     const Rgb f = renderer(sample.wi, sample.wo);
-    const double c = sample.cos_theta_i;
+    const double c = sample.cos_theta_i();
     const Rgb difference = (1.0 + f * c).log() - (1.0 + input.fit_values[k] * c).log();
     sum += sample.weight * difference.square().sum();
     weight += 3 * sample.weight;
@@ -57,7 +57,7 @@ Rgb FitDiffuseScale(const MappingInput& input,
     const fitters::FitSample& sample = input.samples[k];
     const double a = diffuse_shape(sample.wi, sample.wo);
     const Rgb s = rest(sample.wi, sample.wo);
-    const double c = sample.cos_theta_i;
+    const double c = sample.cos_theta_i();
     const Rgb& f = input.fit_values[k];
     const Rgb w = sample.weight * (c / (1.0 + f * c)).square();
     numerator += w * a * (f - s);

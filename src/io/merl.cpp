@@ -57,17 +57,27 @@ std::shared_ptr<const TabulatedBrdf> MerlTabulated(std::shared_ptr<const MerlTab
 }
 
 double MerlTable::CellMeasure(const Vec3& wi, const Vec3& wo) {
+  // The measure of every (theta_h, theta_d) bin, computed once: a fit asks for a million cells.
+  static const std::vector<double> measures = [] {
+    std::vector<double> table(kThetaHalfBins * kThetaDiffBins);
+    for (int i = 0; i < kThetaHalfBins; ++i) {
+      for (int j = 0; j < kThetaDiffBins; ++j) {
+        const HalfDiff centre = CellCentre(i, j, 0);
+        const double n = kThetaHalfBins;
+        const double d_theta_h = ((i + 1) * (i + 1) - i * i) / (n * n) * (0.5 * kPi);
+        const double d_theta_d = 0.5 * kPi / kThetaDiffBins;
+        const double d_phi_d = kPi / kPhiDiffBins;
+        table[i * kThetaDiffBins + j] = 4.0 * std::cos(centre.theta_d) * std::sin(centre.theta_h) *
+                                        std::sin(centre.theta_d) * d_theta_h * d_theta_d * d_phi_d;
+      }
+    }
+    return table;
+  }();
   // Only theta_h and theta_d are needed: cos theta_h = h.z and cos theta_d = wi.h.
   const Vec3 half_vector = (wi + wo).normalized();
   const int i = ThetaHalfIndex(std::acos(std::clamp(half_vector.z(), -1.0, 1.0)));
   const int j = ThetaDiffIndex(std::acos(std::clamp(wi.dot(half_vector), -1.0, 1.0)));
-  const HalfDiff centre = CellCentre(i, j, 0);
-  const double n = kThetaHalfBins;
-  const double d_theta_h = ((i + 1) * (i + 1) - i * i) / (n * n) * (0.5 * kPi);
-  const double d_theta_d = 0.5 * kPi / kThetaDiffBins;
-  const double d_phi_d = kPi / kPhiDiffBins;
-  return 4.0 * std::cos(centre.theta_d) * std::sin(centre.theta_h) * std::sin(centre.theta_d) *
-         d_theta_h * d_theta_d * d_phi_d;
+  return measures[i * kThetaDiffBins + j];
 }
 
 const Rgb MerlTable::kScale(1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0);
