@@ -63,7 +63,8 @@ TEST(RenderFloat, PolynomialsMatchLibmToAFewFloatUlps) {
 }
 
 // The lobes the renderer draws from: power cosines in each frame, up to a sharp one, and the
-// microfacet normals of ggx and beckmann (their own distributions, drawn in double).
+// microfacet normals of ggx and beckmann (their own distributions: ggx's visible normals drawn
+// and weighed in float, beckmann's normals in double).
 std::vector<std::pair<std::string, LobeCoordinates>> Lobes() {
   return {{"normal e=5", {LobeFrame::kNormal, 5.0}},
           {"mirror e=50", {LobeFrame::kMirror, 50.0}},
@@ -108,6 +109,34 @@ TEST(RenderFloat, LobeSamplerDrawsItsOwnPdfWhichIsStrategyPdf) {
     // 19 degrees of freedom: the 99.9th percentile is 43.8.
     EXPECT_LT(chi_square, 43.8) << name;
   }
+}
+
+// The float visible-normal draw (the renderer's) is the double one (energy/monte_carlo.cpp's,
+// whose tests check it against its density) to float precision, for the same uniforms, from
+// normal to grazing views and from smooth to rough: the same warp, not merely a similar one.
+TEST(RenderFloat, FloatVisibleNormalDrawIsTheDoubleOne) {
+  const LobeDistribution& ggx = *ParseModel("ggx:alpha=0.1").Lobe().distribution;
+  ASSERT_NE(ggx.sample_visible_float, nullptr);
+  std::mt19937_64 random(19);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worst = 0.0;
+  for (double alpha : {0.01, 0.035, 0.2, 1.0}) {
+    for (double theta_o : {0.0, 0.5, 1.2, 1.55}) {
+      const Vec3 wo = SphericalDirection(theta_o, 0.7);
+      for (int k = 0; k < 2000; ++k) {
+        // Uniforms that are floats already, so that both draws start from the same numbers.
+        const float u0 = static_cast<float>(unit(random)), u1 = static_cast<float>(unit(random));
+        const Vec3 expected = ggx.sample_visible(wo, u0, u1, alpha);
+        const Vec3 drawn =
+            ggx.sample_visible_float(wo.cast<float>(), u0, u1, static_cast<float>(alpha))
+                .cast<double>();
+        ASSERT_NEAR(drawn.norm(), 1.0, 1e-6);
+        worst = std::max(worst, (drawn - expected).norm());
+      }
+    }
+  }
+  // Angles of about 1e-5 rad: far below a pixel of any environment map.
+  EXPECT_LT(worst, 1e-4);
 }
 
 TEST(RenderFloat, LobePdfIntegratesToOneOverTheSphere) {

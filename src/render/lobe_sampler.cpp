@@ -40,6 +40,9 @@ LobeSampler::LobeSampler(const LobeTechnique& technique, const Vec3f& wo)
       wo_(wo),
       wo_double_(wo.cast<double>()) {
   const LobeCoordinates& lobe = technique.lobe;
+  // As energy/monte_carlo.cpp decides: visible normals only for wo above the surface.
+  visible_normals_ =
+      lobe.distribution != nullptr && lobe.distribution->sample_visible != nullptr && wo.z() > 0.0f;
   if (lobe.distribution != nullptr && lobe.distribution->visible_density != nullptr &&
       wo.z() > 0.0f) {
     // At h = +z (wi the mirror of wo): pdf = G1 D(1) / (4 cos theta_o) = scale density(1).
@@ -69,6 +72,11 @@ Vec3f LobeSampler::SampleAboutAxis(float u0, float u1) const {
 
 Vec3f LobeSampler::Sample(float u0, float u1) const {
   if (lobe_.distribution != nullptr) {
+    if (visible_normals_ && lobe_.distribution->sample_visible_float != nullptr) {
+      // Reflect (core/sampling.h) about the drawn normal.
+      const Vec3f h = lobe_.distribution->sample_visible_float(wo_, u0, u1, exponent_);
+      return 2.0f * wo_.dot(h) * h - wo_;
+    }
     return SampleStrategy(lobe_, wo_double_, Point2(u0, u1)).cast<float>();
   }
   const Vec3f about_axis = SampleAboutAxis(u0, u1);
@@ -115,7 +123,7 @@ float LobeSampler::MisPdf(const Vec3f& wi) const {
 }
 
 float LobeSampler::Pdf(const Vec3f& wi) const {
-  if (lobe_.distribution != nullptr) {
+  if (lobe_.distribution != nullptr && lobe_.distribution->density_float == nullptr) {
     return static_cast<float>(StrategyPdf(lobe_, wo_double_, wi.cast<double>()));
   }
   switch (lobe_.frame) {
@@ -136,6 +144,12 @@ float LobeSampler::Pdf(const Vec3f& wi) const {
       const Vec3f half_vector = sum / std::sqrt(norm_squared);
       const float wo_dot_h = wo_.dot(half_vector);
       if (!(half_vector.z() > 0.0f) || !(wo_dot_h > 0.0f)) return 0.0f;
+      if (lobe_.distribution != nullptr) {
+        const float density = lobe_.distribution->density_float(half_vector.z(), exponent_);
+        // Visible normals: G1(wo) D(h) / (4 cos theta_o), D(h) = density / cos theta_h.
+        if (visible_normals_) return visible_scale_ * density / half_vector.z();
+        return density / (4.0f * wo_dot_h);
+      }
       const float one_minus_cos =
           (half_vector.x() * half_vector.x() + half_vector.y() * half_vector.y()) /
           (1.0f + half_vector.z());

@@ -7,8 +7,8 @@
 // differs from 1 in its fifth digit, and a float cosine would keep one or two digits of what
 // the density depends on. 1 - cos(beta) comes from sines (|a - b|^2 / 2 between unit vectors,
 // or sin^2 / (1 + cos) about the normal), which keep their digits. A lobe with its own
-// distribution (the microfacet models' normals, models/lobe.h) is drawn and evaluated by
-// energy/monte_carlo.cpp in double.
+// distribution (the microfacet models' normals, models/lobe.h) is drawn and evaluated by its
+// own float functions where it has them (ggx), else by energy/monte_carlo.cpp in double.
 #pragma once
 
 #include <Eigen/Core>
@@ -32,9 +32,9 @@ namespace brdf {
 // §9.2: any weights that sum to one will do), while the light and cosine samples, most of
 // which fall far from a narrow lobe, skip its exponential.
 //
-// A lobe with its own distribution (the microfacet normals, evaluated in double through
-// function pointers) enters the weights through a cache-sized table instead: its density of
-// the half vector, D(h) cos(theta_h), at 4096 points uniform in sqrt(1 - cos theta_h),
+// A lobe with its own distribution (the microfacet normals, evaluated through the
+// distribution's function pointers) enters the weights through a cache-sized table instead: its
+// density of the half vector, D(h) cos(theta_h), at 4096 points uniform in sqrt(1 - cos theta_h),
 // interpolated linearly. For the same reason as the core the weights need not be exact, only
 // the same for every technique; the lobe's own sample still divides by its exact pdf.
 struct LobeTechnique {
@@ -66,6 +66,11 @@ class LobeSampler {
   Vec3f Sample(float u0, float u1) const;
   // The density of wi in solid angle.
   float Pdf(const Vec3f& wi) const;
+  // The same for a wi whose MisPdf is mis_pdf > 0 (inside the core): a power cosine's MisPdf
+  // is its Pdf there, so only a distribution of its own evaluates again.
+  float PdfInCore(const Vec3f& wi, float mis_pdf) const {
+    return lobe_.distribution == nullptr ? mis_pdf : Pdf(wi);
+  }
   // The lobe's pdf as the weights count it: 0 outside the core; inside, Pdf (a power
   // cosine) or the tabulated density (a distribution of its own).
   float MisPdf(const Vec3f& wi) const;
@@ -92,6 +97,7 @@ class LobeSampler {
   // (4 cos theta_o cos theta_h), as D_wo(h) = G1(wo) (wo.h) D(h) / cos theta_o; else
   // 1 / (4 wo.h)), without the cos theta_h or wo.h factor, which MisPdf applies.
   float visible_scale_ = 0.0f;
+  bool visible_normals_ = false;  // a distribution drawing the normals visible from wo
   Vec3f wo_;
   Vec3 wo_double_;
   float exponent_ = 1.0f, normalization_ = 1.0f, inverse_exponent_plus_one_ = 0.5f;

@@ -91,6 +91,7 @@ class EnvironmentEstimator {
     uint32_t light_pixel[kBatch] = {}, cosine_pixel[kBatch] = {}, lobe_pixel[kBatch] = {};
     DirectionBatch light_world = {}, light_local = {}, cosine_local = {}, cosine_world = {},
                    lobe_local = {}, lobe_world = {};
+    RgbF light_f[kBatch], cosine_f[kBatch], lobe_f[kBatch];
     Rgb sum = Rgb::Zero();
     double luminance_sum = 0.0, luminance_squares = 0.0;
     for (int first = 0; first < spp_; first += kBatch) {
@@ -142,6 +143,13 @@ class EnvironmentEstimator {
                                  &light_world.z[k], &light_sin_theta[k]);
       }
       Transform(to_local, light_world, &light_local);
+      // The material at every sample of the batch (some are not shaded: below the horizon,
+      // outside the lobe's core; those cost an early return).
+      material_.EvalFloatBatch(light_local.x, light_local.y, light_local.z, wo, count, light_f);
+      material_.EvalFloatBatch(cosine_local.x, cosine_local.y, cosine_local.z, wo, count, cosine_f);
+      if (lobe) {
+        material_.EvalFloatBatch(lobe_local.x, lobe_local.y, lobe_local.z, wo, count, lobe_f);
+      }
 
       for (int k = 0; k < count; ++k) {
         // The lobe's pdf enters the weights as MisPdf (zero outside its core, lobe_sampler.h).
@@ -152,7 +160,8 @@ class EnvironmentEstimator {
           const float pdf = Environment::PdfFloat(texel, light_sin_theta[k]);
           if (wi.z() > 0.0f && pdf > 0.0f) {
             const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
-            estimate += Shade(wi, wo, texel, pdf, pdf, {pdf, wi.z() * kInvPiF, pdf_lobe}, missing);
+            estimate +=
+                Shade(light_f[k], wi, texel, pdf, pdf, {pdf, wi.z() * kInvPiF, pdf_lobe}, missing);
           }
         }
         {
@@ -162,18 +171,19 @@ class EnvironmentEstimator {
             const float pdf = wi.z() * kInvPiF;
             const float pdf_light = Environment::PdfFloat(texel, cosine_sin_theta[k]);
             const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
-            estimate += Shade(wi, wo, texel, pdf, pdf, {pdf_light, pdf, pdf_lobe}, missing);
+            estimate +=
+                Shade(cosine_f[k], wi, texel, pdf, pdf, {pdf_light, pdf, pdf_lobe}, missing);
           }
         }
         if (lobe) {
           const Vec3f wi(lobe_local.x[k], lobe_local.y[k], lobe_local.z[k]);
           const float weighted = wi.z() > 0.0f ? lobe->MisPdf(wi) : 0.0f;
-          const float pdf = weighted > 0.0f ? lobe->Pdf(wi) : 0.0f;
+          const float pdf = weighted > 0.0f ? lobe->PdfInCore(wi, weighted) : 0.0f;
           if (pdf > 0.0f) {
             const Environment::Texel& texel = environment_.texel(lobe_pixel[k]);
             const float pdf_light = Environment::PdfFloat(texel, lobe_sin_theta[k]);
-            estimate += Shade(wi, wo, texel, pdf, weighted, {pdf_light, wi.z() * kInvPiF, weighted},
-                              missing);
+            estimate += Shade(lobe_f[k], wi, texel, pdf, weighted,
+                              {pdf_light, wi.z() * kInvPiF, weighted}, missing);
           }
         }
         const Rgb value = estimate.cast<double>();
@@ -213,12 +223,13 @@ class EnvironmentEstimator {
 
   // f L cos(theta_i) w_t / p_t with the power heuristic's w_t = q_t^2 / sum q^2 over the
   // weights' pdfs q = (q_light, q_cosine, q_lobe) (an unused technique's is 0): the sample of
-  // technique t, drawn with pdf p_t, whose weight pdf is q_t.
-  RgbF Shade(const Vec3f& wi, const Vec3f& wo, const Environment::Texel& texel, float pdf,
-             float weight_pdf, const std::array<float, 3>& weight_pdfs, int64_t* missing) const {
+  // technique t, drawn with pdf p_t, whose weight pdf is q_t; `material` is f(wi, wo).
+  static RgbF Shade(const RgbF& material, const Vec3f& wi, const Environment::Texel& texel,
+                    float pdf, float weight_pdf, const std::array<float, 3>& weight_pdfs,
+                    int64_t* missing) {
     const float sum_squares = weight_pdfs[0] * weight_pdfs[0] + weight_pdfs[1] * weight_pdfs[1] +
                               weight_pdfs[2] * weight_pdfs[2];
-    const RgbF f = FiniteOrZero(material_.EvalFloat(wi, wo), missing);
+    const RgbF f = FiniteOrZero(material, missing);
     const RgbF radiance(texel.rgb[0], texel.rgb[1], texel.rgb[2]);
     return f * radiance * (wi.z() * (weight_pdf / sum_squares) * (weight_pdf / pdf));
   }
