@@ -91,6 +91,11 @@ class EnvironmentEstimator {
     uint32_t light_pixel[kBatch] = {}, cosine_pixel[kBatch] = {}, lobe_pixel[kBatch] = {};
     DirectionBatch light_world = {}, light_local = {}, cosine_local = {}, cosine_world = {},
                    lobe_local = {}, lobe_world = {};
+    alignas(16) float lobe_u0[kBatch] = {}, lobe_u1[kBatch] = {};
+    // The lobe's pdf as the weights count it (MisPdf: zero outside its core, lobe_sampler.h),
+    // at each technique's samples.
+    alignas(16) float light_lobe_pdf[kBatch] = {}, cosine_lobe_pdf[kBatch] = {},
+                      lobe_lobe_pdf[kBatch] = {};
     RgbF light_f[kBatch], cosine_f[kBatch], lobe_f[kBatch];
     Rgb sum = Rgb::Zero();
     double luminance_sum = 0.0, luminance_squares = 0.0;
@@ -106,13 +111,12 @@ class EnvironmentEstimator {
         cosine_u0[k] = random.UniformFloat();
         cosine_u1[k] = random.UniformFloat();
         if (lobe) {
-          const float w0 = random.UniformFloat();
-          const float w1 = random.UniformFloat();
-          const Vec3f wi = lobe->Sample(w0, w1);
-          lobe_local.x[k] = wi.x();
-          lobe_local.y[k] = wi.y();
-          lobe_local.z[k] = wi.z();
+          lobe_u0[k] = random.UniformFloat();
+          lobe_u1[k] = random.UniformFloat();
         }
+      }
+      if (lobe) {
+        lobe->SampleBatch(lobe_u0, lobe_u1, kBatch, lobe_local.x, lobe_local.y, lobe_local.z);
       }
       // SampleCosineHemisphere (core/sampling.h) in float: the polar map.
       for (int k = 0; k < kBatch; ++k) {
@@ -149,17 +153,19 @@ class EnvironmentEstimator {
       material_.EvalFloatBatch(cosine_local.x, cosine_local.y, cosine_local.z, wo, count, cosine_f);
       if (lobe) {
         material_.EvalFloatBatch(lobe_local.x, lobe_local.y, lobe_local.z, wo, count, lobe_f);
+        lobe->MisPdfBatch(light_local.x, light_local.y, light_local.z, kBatch, light_lobe_pdf);
+        lobe->MisPdfBatch(cosine_local.x, cosine_local.y, cosine_local.z, kBatch, cosine_lobe_pdf);
+        lobe->MisPdfBatch(lobe_local.x, lobe_local.y, lobe_local.z, kBatch, lobe_lobe_pdf);
       }
 
       for (int k = 0; k < count; ++k) {
-        // The lobe's pdf enters the weights as MisPdf (zero outside its core, lobe_sampler.h).
         RgbF estimate = RgbF::Zero();
         {
           const Vec3f wi(light_local.x[k], light_local.y[k], light_local.z[k]);
           const Environment::Texel& texel = environment_.texel(light_pixel[k]);
           const float pdf = Environment::PdfFloat(texel, light_sin_theta[k]);
           if (wi.z() > 0.0f && pdf > 0.0f) {
-            const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
+            const float pdf_lobe = light_lobe_pdf[k];
             estimate +=
                 Shade(light_f[k], wi, texel, pdf, pdf, {pdf, wi.z() * kInvPiF, pdf_lobe}, missing);
           }
@@ -170,14 +176,14 @@ class EnvironmentEstimator {
             const Environment::Texel& texel = environment_.texel(cosine_pixel[k]);
             const float pdf = wi.z() * kInvPiF;
             const float pdf_light = Environment::PdfFloat(texel, cosine_sin_theta[k]);
-            const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
+            const float pdf_lobe = cosine_lobe_pdf[k];
             estimate +=
                 Shade(cosine_f[k], wi, texel, pdf, pdf, {pdf_light, pdf, pdf_lobe}, missing);
           }
         }
         if (lobe) {
           const Vec3f wi(lobe_local.x[k], lobe_local.y[k], lobe_local.z[k]);
-          const float weighted = wi.z() > 0.0f ? lobe->MisPdf(wi) : 0.0f;
+          const float weighted = wi.z() > 0.0f ? lobe_lobe_pdf[k] : 0.0f;
           const float pdf = weighted > 0.0f ? lobe->PdfInCore(wi, weighted) : 0.0f;
           if (pdf > 0.0f) {
             const Environment::Texel& texel = environment_.texel(lobe_pixel[k]);
