@@ -117,6 +117,25 @@ BRDF_LANE_FUNCTION float LobeSampler::PowerCosineAxis(float x, float y, float z,
 }
 
 template <LobeFrame kFrame>
+void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count, float* x,
+                                     float* y, float* z) const {
+  // Into arrays of its own first: writes through x, y, z might alias this sampler's members,
+  // and the run-time checks for that would be too many for the compiler to vectorize.
+  constexpr int kChunk = 16;
+  alignas(16) float drawn_x[kChunk], drawn_y[kChunk], drawn_z[kChunk];
+  for (int first = 0; first < count; first += kChunk) {
+    const int n = std::min(kChunk, count - first);
+    for (int k = 0; k < n; ++k) {
+      PowerCosineSample<kFrame>(u0[first + k], u1[first + k], &drawn_x[k], &drawn_y[k],
+                                &drawn_z[k]);
+    }
+    std::copy(drawn_x, drawn_x + n, x + first);
+    std::copy(drawn_y, drawn_y + n, y + first);
+    std::copy(drawn_z, drawn_z + n, z + first);
+  }
+}
+
+template <LobeFrame kFrame>
 void LobeSampler::PowerCosineMisPdfs(const float* x, const float* y, const float* z, int count,
                                      float* mis_pdf) const {
   constexpr int kChunk = 16;
@@ -167,20 +186,11 @@ void LobeSampler::SampleBatch(const float* u0, const float* u1, int count, float
   }
   switch (lobe_.frame) {
     case LobeFrame::kNormal:
-      for (int k = 0; k < count; ++k) {
-        PowerCosineSample<LobeFrame::kNormal>(u0[k], u1[k], &x[k], &y[k], &z[k]);
-      }
-      return;
+      return PowerCosineSamples<LobeFrame::kNormal>(u0, u1, count, x, y, z);
     case LobeFrame::kMirror:
-      for (int k = 0; k < count; ++k) {
-        PowerCosineSample<LobeFrame::kMirror>(u0[k], u1[k], &x[k], &y[k], &z[k]);
-      }
-      return;
+      return PowerCosineSamples<LobeFrame::kMirror>(u0, u1, count, x, y, z);
     case LobeFrame::kHalfVector:
-      for (int k = 0; k < count; ++k) {
-        PowerCosineSample<LobeFrame::kHalfVector>(u0[k], u1[k], &x[k], &y[k], &z[k]);
-      }
-      return;
+      return PowerCosineSamples<LobeFrame::kHalfVector>(u0, u1, count, x, y, z);
   }
 }
 

@@ -96,6 +96,9 @@ class LobeSampler {
   template <LobeFrame kFrame>
   void PowerCosineSample(float u0, float u1, float* x, float* y, float* z) const;
   template <LobeFrame kFrame>
+  void PowerCosineSamples(const float* u0, const float* u1, int count, float* x, float* y,
+                          float* z) const;
+  template <LobeFrame kFrame>
   void PowerCosineMisPdfs(const float* x, const float* y, const float* z, int count,
                           float* mis_pdf) const;
   // (e+1)/(2 pi) (1 - one_minus_cos)^e, keeping the digits of a cosine near 1.
