@@ -136,8 +136,8 @@ void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count
 }
 
 template <LobeFrame kFrame>
-void LobeSampler::PowerCosineMisPdfs(const float* x, const float* y, const float* z, int count,
-                                     float* mis_pdf) const {
+void LobeSampler::AxisMisPdfs(const float* x, const float* y, const float* z, int count,
+                              float* mis_pdf) const {
   constexpr int kChunk = 16;
   alignas(16) float one_minus_cos[kChunk], jacobian[kChunk];
   const float core = core_one_minus_cos_;
@@ -150,14 +150,28 @@ void LobeSampler::PowerCosineMisPdfs(const float* x, const float* y, const float
       inside += static_cast<int>(one_minus_cos[k] <= core);
     }
     // Most light and cosine samples of a narrow lobe fall outside its core: skip the
-    // exponential for a batch that has none inside.
+    // density for a batch that has none inside.
     if (inside == 0) {
       std::fill(mis_pdf + first, mis_pdf + first + n, 0.0f);
       continue;
     }
+    if (lobe_.distribution == nullptr) {
+      for (int k = 0; k < n; ++k) {
+        const float pdf = PowerCosineDensity(one_minus_cos[k]) * jacobian[k];
+        mis_pdf[first + k] = one_minus_cos[k] > core ? 0.0f : pdf;
+      }
+      continue;
+    }
+    // A distribution's density of h from the table (a gather: one at a time). Visible
+    // normals: G1(wo) D(h) / (4 cos theta_o), D(h) = density / cos theta_h; else the
+    // half-vector Jacobian.
+    const bool visible = lobe_.distribution->visible_density != nullptr;
     for (int k = 0; k < n; ++k) {
-      const float pdf = PowerCosineDensity(one_minus_cos[k]) * jacobian[k];
-      mis_pdf[first + k] = one_minus_cos[k] > core ? 0.0f : pdf;
+      const float cos_theta_h = 1.0f - one_minus_cos[k];
+      mis_pdf[first + k] = 0.0f;
+      if (one_minus_cos[k] > core || !(cos_theta_h > 0.0f)) continue;
+      const float density = technique_.TabulatedDensity(one_minus_cos[k]);
+      mis_pdf[first + k] = density * (visible ? visible_scale_ / cos_theta_h : jacobian[k]);
     }
   }
 }
@@ -218,32 +232,17 @@ float LobeSampler::MisPdf(const Vec3f& wi) const {
 
 void LobeSampler::MisPdfBatch(const float* x, const float* y, const float* z, int count,
                               float* mis_pdf) const {
-  const float core = core_one_minus_cos_;
+  // The distributions are microfacet normals: half-vector lobes.
   if (lobe_.distribution != nullptr) {
-    // Half vector (the distributions are microfacet normals), its density from the table.
-    for (int k = 0; k < count; ++k) {
-      const Vec3f wi(x[k], y[k], z[k]);
-      // 2 where h is not defined or wo.h <= 0 (PowerCosineAxis).
-      const float one_minus_cos = AxisOneMinusCos(wi);
-      const float cos_theta_h = 1.0f - one_minus_cos;
-      mis_pdf[k] = 0.0f;
-      if (one_minus_cos > core || !(cos_theta_h > 0.0f)) continue;
-      const float density = technique_.TabulatedDensity(one_minus_cos);
-      if (lobe_.distribution->visible_density != nullptr) {
-        mis_pdf[k] = visible_scale_ * density / cos_theta_h;
-      } else {
-        mis_pdf[k] = density / (4.0f * wo_.dot((wi + wo_).normalized()));
-      }
-    }
-    return;
+    return AxisMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);
   }
   switch (lobe_.frame) {
     case LobeFrame::kNormal:
-      return PowerCosineMisPdfs<LobeFrame::kNormal>(x, y, z, count, mis_pdf);
+      return AxisMisPdfs<LobeFrame::kNormal>(x, y, z, count, mis_pdf);
     case LobeFrame::kMirror:
-      return PowerCosineMisPdfs<LobeFrame::kMirror>(x, y, z, count, mis_pdf);
+      return AxisMisPdfs<LobeFrame::kMirror>(x, y, z, count, mis_pdf);
     case LobeFrame::kHalfVector:
-      return PowerCosineMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);
+      return AxisMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);
   }
 }
 

@@ -98,9 +98,9 @@ class LobeSampler {
   template <LobeFrame kFrame>
   void PowerCosineSamples(const float* u0, const float* u1, int count, float* x, float* y,
                           float* z) const;
+  // MisPdfBatch in the lobe's frame (a distribution's: the half vector).
   template <LobeFrame kFrame>
-  void PowerCosineMisPdfs(const float* x, const float* y, const float* z, int count,
-                          float* mis_pdf) const;
+  void AxisMisPdfs(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
   // (e+1)/(2 pi) (1 - one_minus_cos)^e, keeping the digits of a cosine near 1.
   BRDF_LANE_FUNCTION float PowerCosineDensity(float one_minus_cos) const {
     const float density =
