@@ -147,9 +147,10 @@ TEST(RenderFloat, FloatVisibleNormalDrawIsTheDoubleOne) {
         // Uniforms that are floats already, so that both draws start from the same numbers.
         const float u0 = static_cast<float>(unit(random)), u1 = static_cast<float>(unit(random));
         const Vec3 expected = ggx.sample_visible(wo, u0, u1, alpha);
-        const Vec3 drawn =
-            ggx.sample_visible_float(wo.cast<float>(), u0, u1, static_cast<float>(alpha))
-                .cast<double>();
+        Vec3f drawn_float;
+        ggx.sample_visible_float(wo.cast<float>(), &u0, &u1, 1, &drawn_float.x(), &drawn_float.y(),
+                                 &drawn_float.z(), static_cast<float>(alpha));
+        const Vec3 drawn = drawn_float.cast<double>();
         ASSERT_NEAR(drawn.norm(), 1.0, 1e-6);
         worst = std::max(worst, (drawn - expected).norm());
       }

@@ -42,10 +42,11 @@ struct LobeDistribution {
   // `density` and `sample_visible` in single precision, for the preview renderer's hot loop
   // (render/lobe_sampler.h); null: it calls the double ones. Only the density of h is needed:
   // the visible normals' density of wi is D(h) times a factor of wo alone, G1(wo) / (4 cos
-  // theta_o), which the renderer takes once a pixel.
+  // theta_o), which the renderer takes once a pixel. The draw takes `count` pairs (u0[k],
+  // u1[k]) for one wo and writes h = (x[k], y[k], z[k]).
   float (*density_float)(float cos_beta, float shape) = nullptr;
-  Vec3T<float> (*sample_visible_float)(const Vec3T<float>& wo, float u0, float u1,
-                                       float shape) = nullptr;
+  void (*sample_visible_float)(const Vec3T<float>& wo, const float* u0, const float* u1, int count,
+                               float* x, float* y, float* z, float shape) = nullptr;
 };
 
 // A lobe frame and its density (the power cosine of core/sampling.h unless a distribution is

@@ -185,11 +185,13 @@ Vec3f LobeSampler::Sample(float u0, float u1) const {
 void LobeSampler::SampleBatch(const float* u0, const float* u1, int count, float* x, float* y,
                               float* z) const {
   if (lobe_.distribution != nullptr) {
+    const bool in_float = visible_normals_ && lobe_.distribution->sample_visible_float != nullptr;
+    // The normals first (for all of the batch at once), then wi: Reflect (core/sampling.h).
+    if (in_float) lobe_.distribution->sample_visible_float(wo_, u0, u1, count, x, y, z, exponent_);
     for (int k = 0; k < count; ++k) {
       Vec3f wi;
-      if (visible_normals_ && lobe_.distribution->sample_visible_float != nullptr) {
-        // Reflect (core/sampling.h) about the drawn normal.
-        const Vec3f h = lobe_.distribution->sample_visible_float(wo_, u0[k], u1[k], exponent_);
+      if (in_float) {
+        const Vec3f h(x[k], y[k], z[k]);
         wi = 2.0f * wo_.dot(h) * h - wo_;
       } else {
         wi = SampleStrategy(lobe_, wo_double_, Point2(u0[k], u1[k])).cast<float>();
