@@ -46,27 +46,58 @@ struct Ggx : MicrofacetModel<Ggx> {
   static double CosAt(double u, double alpha) {
     return std::sqrt(u / (u + alpha * alpha * (1.0 - u)));
   }
-  static double Density(double cos_h, double alpha) { return D(cos_h, alpha) * cos_h; }
+  // Templated so that the preview renderer's hot loop draws and weighs in float (models/lobe.h).
+  template <typename T>
+  static T Density(T cos_h, T alpha) {
+    return D(cos_h, alpha) * cos_h;
+  }
 
   // The normals visible from wo, D_wo(h) = G1(wo) max(0, wo.h) D(h) / cos(theta_o), sampled
   // after Heitz, "Sampling the GGX distribution of visible normals", JCGT 7(4), 2018: stretch
   // wo to the configuration where alpha = 1 (there the visible normals are a hemisphere seen
   // from wo), draw a point on the projected disk with the part hidden behind the hemisphere's
   // rim folded onto the visible part, lift it to the hemisphere and unstretch the normal.
+  // Templated like Density. The stretched view and its tangent frame depend on wo alone: a
+  // batch of draws for one wo shares them.
+  template <typename T>
+  struct VisibleNormalFrame {
+    Vec3T<T> view, t1, t2;
+    T alpha;
+  };
+  template <typename T>
+  static VisibleNormalFrame<T> VisibleNormalFrameOf(const Vec3T<T>& wo, T alpha) {
+    using std::sqrt;
+    const Vec3T<T> view = Vec3T<T>(alpha * wo.x(), alpha * wo.y(), wo.z()).normalized();
+    const T length2 = view.x() * view.x() + view.y() * view.y();
+    const Vec3T<T> t1 =
+        length2 > T(0) ? Vec3T<T>(-view.y(), view.x(), T(0)) / sqrt(length2) : Vec3T<T>(1, 0, 0);
+    return {view, t1, view.cross(t1), alpha};
+  }
+  template <typename T>
+  static Vec3T<T> SampleVisibleNormal(const VisibleNormalFrame<T>& frame, T u0, T u1) {
+    using std::cos;
+    using std::sin;
+    using std::sqrt;
+    const T radius = sqrt(u0), phi = T(2.0 * kPi) * u1;
+    const T p1 = radius * cos(phi);
+    const T blend = T(0.5) * (T(1) + frame.view.z());
+    const T p2 = (T(1) - blend) * sqrt(std::max(T(0), T(1) - p1 * p1)) + blend * radius * sin(phi);
+    const Vec3T<T> normal =
+        p1 * frame.t1 + p2 * frame.t2 + sqrt(std::max(T(0), T(1) - p1 * p1 - p2 * p2)) * frame.view;
+    return Vec3T<T>(frame.alpha * normal.x(), frame.alpha * normal.y(), std::max(T(0), normal.z()))
+        .normalized();
+  }
   static Vec3 SampleVisibleNormal(const Vec3& wo, double u0, double u1, double alpha) {
-    const Vec3 view = Vec3(alpha * wo.x(), alpha * wo.y(), wo.z()).normalized();
-    const double length2 = view.x() * view.x() + view.y() * view.y();
-    const Vec3 t1 =
-        length2 > 0 ? Vec3(-view.y(), view.x(), 0.0) / std::sqrt(length2) : Vec3(1, 0, 0);
-    const Vec3 t2 = view.cross(t1);
-    const double radius = std::sqrt(u0), phi = 2.0 * kPi * u1;
-    const double p1 = radius * std::cos(phi);
-    const double blend = 0.5 * (1.0 + view.z());
-    const double p2 =
-        (1.0 - blend) * std::sqrt(std::max(0.0, 1.0 - p1 * p1)) + blend * radius * std::sin(phi);
-    const Vec3 normal =
-        p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * view;
-    return Vec3(alpha * normal.x(), alpha * normal.y(), std::max(0.0, normal.z())).normalized();
+    return SampleVisibleNormal(VisibleNormalFrameOf(wo, alpha), u0, u1);
+  }
+  // A batch of draws in float for one wo (the renderer's, models/lobe.h).
+  static void SampleVisibleNormals(const Vec3T<float>& wo, const float* u0, const float* u1,
+                                   int count, float* x, float* y, float* z, float alpha) {
+    const VisibleNormalFrame<float> frame = VisibleNormalFrameOf(wo, alpha);
+    for (int k = 0; k < count; ++k) {
+      const Vec3T<float> h = SampleVisibleNormal(frame, u0[k], u1[k]);
+      x[k] = h.x(), y[k] = h.y(), z[k] = h.z();
+    }
   }
   static double VisibleNormalDensity(const Vec3& wo, const Vec3& h, double alpha) {
     const double wo_dot_h = wo.dot(h);
@@ -74,7 +105,9 @@ struct Ggx : MicrofacetModel<Ggx> {
     return D(h.z(), alpha) * wo_dot_h / ((1.0 + Lambda(wo.z(), alpha)) * wo.z());
   }
   static constexpr LobeDistribution kLobeDistribution = {
-      "ggx", MassBeyond, CosAt, Density, SampleVisibleNormal, VisibleNormalDensity};
+      "ggx",           MassBeyond,          CosAt,
+      Density<double>, SampleVisibleNormal, VisibleNormalDensity,
+      Density<float>,  SampleVisibleNormals};
 
   // D falls to half its peak at tan²theta_h = (√2 − 1) α², where cos^e does for
   // e = 2 ln 2 / ((√2 − 1) α²).

@@ -39,6 +39,14 @@ struct LobeDistribution {
   double (*density)(double cos_beta, double shape);
   Vec3 (*sample_visible)(const Vec3& wo, double u0, double u1, double shape) = nullptr;
   double (*visible_density)(const Vec3& wo, const Vec3& h, double shape) = nullptr;
+  // `density` and `sample_visible` in single precision, for the preview renderer's hot loop
+  // (render/lobe_sampler.h); null: it calls the double ones. Only the density of h is needed:
+  // the visible normals' density of wi is D(h) times a factor of wo alone, G1(wo) / (4 cos
+  // theta_o), which the renderer takes once a pixel. The draw takes `count` pairs (u0[k],
+  // u1[k]) for one wo and writes h = (x[k], y[k], z[k]).
+  float (*density_float)(float cos_beta, float shape) = nullptr;
+  void (*sample_visible_float)(const Vec3T<float>& wo, const float* u0, const float* u1, int count,
+                               float* x, float* y, float* z, float shape) = nullptr;
 };
 
 // A lobe frame and its density (the power cosine of core/sampling.h unless a distribution is

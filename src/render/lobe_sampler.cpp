@@ -1,6 +1,7 @@
 #include "render/lobe_sampler.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "core/sampling.h"
 
@@ -40,6 +41,9 @@ LobeSampler::LobeSampler(const LobeTechnique& technique, const Vec3f& wo)
       wo_(wo),
       wo_double_(wo.cast<double>()) {
   const LobeCoordinates& lobe = technique.lobe;
+  // As energy/monte_carlo.cpp decides: visible normals only for wo above the surface.
+  visible_normals_ =
+      lobe.distribution != nullptr && lobe.distribution->sample_visible != nullptr && wo.z() > 0.0f;
   if (lobe.distribution != nullptr && lobe.distribution->visible_density != nullptr &&
       wo.z() > 0.0f) {
     // At h = +z (wi the mirror of wo): pdf = G1 D(1) / (4 cos theta_o) = scale density(1).
@@ -58,92 +62,215 @@ LobeSampler::LobeSampler(const LobeTechnique& technique, const Vec3f& wo)
   }
 }
 
-Vec3f LobeSampler::SampleAboutAxis(float u0, float u1) const {
-  // u0 = 0 gives log 0 = -inf and 1 - cos = 1: the rim, as u^(1/(e+1)) = 0 does.
-  const float one_minus_cos = -ExpMinusOne(std::log(u0) * inverse_exponent_plus_one_);
+template <LobeFrame kFrame>
+BRDF_LANE_FUNCTION void LobeSampler::PowerCosineSample(float u0, float u1, float* x, float* y,
+                                                       float* z) const {
+  // About +z of the lobe's frame: 1 - cos(beta) = 1 - u^(1/(e+1)), keeping the digits of a
+  // cosine near 1. u0 = 0 gives log 0 = -inf and 1 - cos = 1: the rim, as u^(1/(e+1)) = 0 does.
+  const float log_u0 = u0 > 0.0f ? LogPositive(u0) : -std::numeric_limits<float>::infinity();
+  const float one_minus_cos = -ExpMinusOne(log_u0 * inverse_exponent_plus_one_);
   const float sin_theta = std::sqrt(std::max(0.0f, one_minus_cos * (2.0f - one_minus_cos)));
   float sin_phi, cos_phi;
   SinCosTurn(u1, &sin_phi, &cos_phi);
-  return Vec3f(sin_theta * cos_phi, sin_theta * sin_phi, 1.0f - one_minus_cos);
+  const float axis_x = sin_theta * cos_phi, axis_y = sin_theta * sin_phi,
+              axis_z = 1.0f - one_minus_cos;
+  if constexpr (kFrame == LobeFrame::kNormal) {
+    *x = axis_x, *y = axis_y, *z = axis_z;
+  } else if constexpr (kFrame == LobeFrame::kMirror) {
+    // mirror_frame_ transposed: its rows are the frame's axes.
+    *x = mirror_frame_(0, 0) * axis_x + mirror_frame_(1, 0) * axis_y + mirror_frame_(2, 0) * axis_z;
+    *y = mirror_frame_(0, 1) * axis_x + mirror_frame_(1, 1) * axis_y + mirror_frame_(2, 1) * axis_z;
+    *z = mirror_frame_(0, 2) * axis_x + mirror_frame_(1, 2) * axis_y + mirror_frame_(2, 2) * axis_z;
+  } else {
+    // The drawn axis is the half vector: reflect wo about it.
+    const float twice_dot = 2.0f * (wo_.x() * axis_x + wo_.y() * axis_y + wo_.z() * axis_z);
+    *x = twice_dot * axis_x - wo_.x(), *y = twice_dot * axis_y - wo_.y();
+    *z = twice_dot * axis_z - wo_.z();
+  }
+}
+
+template <LobeFrame kFrame>
+BRDF_LANE_FUNCTION float LobeSampler::PowerCosineAxis(float x, float y, float z,
+                                                      float* one_minus_cos) const {
+  if constexpr (kFrame == LobeFrame::kNormal) {
+    *one_minus_cos = z > 0.0f ? (x * x + y * y) / (1.0f + std::max(z, 0.0f)) : 2.0f;
+    return 1.0f;
+  } else if constexpr (kFrame == LobeFrame::kMirror) {
+    // |wi - m|^2 = 2 (1 - cos) for unit vectors; beyond 90 deg from m (1 - cos >= 1) the
+    // density is 0.
+    const float dx = x + wo_.x(), dy = y + wo_.y(), dz = z - wo_.z();
+    *one_minus_cos = 0.5f * (dx * dx + dy * dy + dz * dz);
+    return 1.0f;
+  } else {
+    const float sum_x = x + wo_.x(), sum_y = y + wo_.y(), sum_z = z + wo_.z();
+    const float norm = std::sqrt(sum_x * sum_x + sum_y * sum_y + sum_z * sum_z);
+    const float wo_dot_sum = wo_.x() * sum_x + wo_.y() * sum_y + wo_.z() * sum_z;
+    // Not && (a branch): the loops over a batch vectorize only without control flow.
+    const bool defined = (norm > 0.0f) & (sum_z > 0.0f) & (wo_dot_sum > 0.0f);
+    const float safe_norm = defined ? norm : 1.0f;
+    // With h = sum / |sum|: 1 - h_z = (h_x^2 + h_y^2) / (1 + h_z).
+    *one_minus_cos =
+        defined ? (sum_x * sum_x + sum_y * sum_y) / (safe_norm * (safe_norm + sum_z)) : 2.0f;
+    // The half-vector Jacobian dω_h/dω_i = 1/(4 wo.h) (core/sampling.h).
+    return defined ? 0.25f * safe_norm / wo_dot_sum : 0.0f;
+  }
+}
+
+template <LobeFrame kFrame>
+void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count, float* x,
+                                     float* y, float* z) const {
+  // Into arrays of its own first: writes through x, y, z might alias this sampler's members,
+  // and the run-time checks for that would be too many for the compiler to vectorize.
+  constexpr int kChunk = 16;
+  alignas(16) float drawn_x[kChunk], drawn_y[kChunk], drawn_z[kChunk];
+  for (int first = 0; first < count; first += kChunk) {
+    const int n = std::min(kChunk, count - first);
+    for (int k = 0; k < n; ++k) {
+      PowerCosineSample<kFrame>(u0[first + k], u1[first + k], &drawn_x[k], &drawn_y[k],
+                                &drawn_z[k]);
+    }
+    std::copy(drawn_x, drawn_x + n, x + first);
+    std::copy(drawn_y, drawn_y + n, y + first);
+    std::copy(drawn_z, drawn_z + n, z + first);
+  }
+}
+
+template <LobeFrame kFrame>
+void LobeSampler::AxisMisPdfs(const float* x, const float* y, const float* z, int count,
+                              float* mis_pdf) const {
+  constexpr int kChunk = 16;
+  alignas(16) float one_minus_cos[kChunk], jacobian[kChunk];
+  const float core = core_one_minus_cos_;
+  for (int first = 0; first < count; first += kChunk) {
+    const int n = std::min(kChunk, count - first);
+    int inside = 0;
+    for (int k = 0; k < n; ++k) {
+      jacobian[k] =
+          PowerCosineAxis<kFrame>(x[first + k], y[first + k], z[first + k], &one_minus_cos[k]);
+      inside += static_cast<int>(one_minus_cos[k] <= core);
+    }
+    // Most light and cosine samples of a narrow lobe fall outside its core: skip the
+    // density for a batch that has none inside.
+    if (inside == 0) {
+      std::fill(mis_pdf + first, mis_pdf + first + n, 0.0f);
+      continue;
+    }
+    if (lobe_.distribution == nullptr) {
+      for (int k = 0; k < n; ++k) {
+        const float pdf = PowerCosineDensity(one_minus_cos[k]) * jacobian[k];
+        mis_pdf[first + k] = one_minus_cos[k] > core ? 0.0f : pdf;
+      }
+      continue;
+    }
+    // A distribution's density of h from the table (a gather: one at a time). Visible
+    // normals: G1(wo) D(h) / (4 cos theta_o), D(h) = density / cos theta_h; else the
+    // half-vector Jacobian.
+    const bool visible = lobe_.distribution->visible_density != nullptr;
+    for (int k = 0; k < n; ++k) {
+      const float cos_theta_h = 1.0f - one_minus_cos[k];
+      mis_pdf[first + k] = 0.0f;
+      if (one_minus_cos[k] > core || !(cos_theta_h > 0.0f)) continue;
+      const float density = technique_.TabulatedDensity(one_minus_cos[k]);
+      mis_pdf[first + k] = density * (visible ? visible_scale_ / cos_theta_h : jacobian[k]);
+    }
+  }
 }
 
 Vec3f LobeSampler::Sample(float u0, float u1) const {
+  Vec3f wi;
+  SampleBatch(&u0, &u1, 1, &wi.x(), &wi.y(), &wi.z());
+  return wi;
+}
+
+void LobeSampler::SampleBatch(const float* u0, const float* u1, int count, float* x, float* y,
+                              float* z) const {
   if (lobe_.distribution != nullptr) {
-    return SampleStrategy(lobe_, wo_double_, Point2(u0, u1)).cast<float>();
+    const bool in_float = visible_normals_ && lobe_.distribution->sample_visible_float != nullptr;
+    // The normals first (for all of the batch at once), then wi: Reflect (core/sampling.h).
+    if (in_float) lobe_.distribution->sample_visible_float(wo_, u0, u1, count, x, y, z, exponent_);
+    for (int k = 0; k < count; ++k) {
+      Vec3f wi;
+      if (in_float) {
+        const Vec3f h(x[k], y[k], z[k]);
+        wi = 2.0f * wo_.dot(h) * h - wo_;
+      } else {
+        wi = SampleStrategy(lobe_, wo_double_, Point2(u0[k], u1[k])).cast<float>();
+      }
+      x[k] = wi.x(), y[k] = wi.y(), z[k] = wi.z();
+    }
+    return;
   }
-  const Vec3f about_axis = SampleAboutAxis(u0, u1);
   switch (lobe_.frame) {
     case LobeFrame::kNormal:
-      return about_axis;
+      return PowerCosineSamples<LobeFrame::kNormal>(u0, u1, count, x, y, z);
     case LobeFrame::kMirror:
-      return mirror_frame_.transpose() * about_axis;
+      return PowerCosineSamples<LobeFrame::kMirror>(u0, u1, count, x, y, z);
     case LobeFrame::kHalfVector:
-      return 2.0f * wo_.dot(about_axis) * about_axis - wo_;
+      return PowerCosineSamples<LobeFrame::kHalfVector>(u0, u1, count, x, y, z);
   }
-  return about_axis;
 }
 
 float LobeSampler::AxisOneMinusCos(const Vec3f& wi) const {
+  float one_minus_cos = 2.0f;
   switch (lobe_.frame) {
     case LobeFrame::kNormal:
-      return wi.z() > 0.0f ? (wi.x() * wi.x() + wi.y() * wi.y()) / (1.0f + wi.z()) : 2.0f;
+      PowerCosineAxis<LobeFrame::kNormal>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
+      break;
     case LobeFrame::kMirror:
-      return 0.5f * (wi - Vec3f(-wo_.x(), -wo_.y(), wo_.z())).squaredNorm();
-    case LobeFrame::kHalfVector: {
-      const Vec3f sum = wi + wo_;
-      const float norm_squared = sum.squaredNorm();
-      if (!(norm_squared > 0.0f) || !(sum.z() > 0.0f)) return 2.0f;
-      // With h = sum / |sum|: 1 - h_z = (h_x^2 + h_y^2) / (1 + h_z).
-      const float norm = std::sqrt(norm_squared);
-      return (sum.x() * sum.x() + sum.y() * sum.y()) / (norm * (norm + sum.z()));
-    }
+      PowerCosineAxis<LobeFrame::kMirror>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
+      break;
+    case LobeFrame::kHalfVector:
+      PowerCosineAxis<LobeFrame::kHalfVector>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
+      break;
   }
-  return 2.0f;
+  return one_minus_cos;
 }
 
 float LobeSampler::MisPdf(const Vec3f& wi) const {
-  const float one_minus_cos = AxisOneMinusCos(wi);
-  if (one_minus_cos > core_one_minus_cos_) return 0.0f;
-  if (lobe_.distribution == nullptr) return Pdf(wi);
-  // Half vector (the distributions are microfacet normals).
-  const Vec3f h = (wi + wo_).normalized();
-  const float wo_dot_h = wo_.dot(h);
-  if (!(h.z() > 0.0f) || !(wo_dot_h > 0.0f)) return 0.0f;
-  const float density = technique_.TabulatedDensity(one_minus_cos);
-  if (lobe_.distribution->visible_density != nullptr) return visible_scale_ * density / h.z();
-  return density / (4.0f * wo_dot_h);
+  float mis_pdf;
+  MisPdfBatch(&wi.x(), &wi.y(), &wi.z(), 1, &mis_pdf);
+  return mis_pdf;
+}
+
+void LobeSampler::MisPdfBatch(const float* x, const float* y, const float* z, int count,
+                              float* mis_pdf) const {
+  // The distributions are microfacet normals: half-vector lobes.
+  if (lobe_.distribution != nullptr) {
+    return AxisMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);
+  }
+  switch (lobe_.frame) {
+    case LobeFrame::kNormal:
+      return AxisMisPdfs<LobeFrame::kNormal>(x, y, z, count, mis_pdf);
+    case LobeFrame::kMirror:
+      return AxisMisPdfs<LobeFrame::kMirror>(x, y, z, count, mis_pdf);
+    case LobeFrame::kHalfVector:
+      return AxisMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);
+  }
 }
 
 float LobeSampler::Pdf(const Vec3f& wi) const {
   if (lobe_.distribution != nullptr) {
-    return static_cast<float>(StrategyPdf(lobe_, wo_double_, wi.cast<double>()));
+    if (lobe_.distribution->density_float == nullptr) {
+      return static_cast<float>(StrategyPdf(lobe_, wo_double_, wi.cast<double>()));
+    }
+    const Vec3f sum = wi + wo_;
+    const float norm_squared = sum.squaredNorm();
+    if (!(norm_squared > 0.0f)) return 0.0f;
+    const Vec3f half_vector = sum / std::sqrt(norm_squared);
+    const float wo_dot_h = wo_.dot(half_vector);
+    if (!(half_vector.z() > 0.0f) || !(wo_dot_h > 0.0f)) return 0.0f;
+    const float density = lobe_.distribution->density_float(half_vector.z(), exponent_);
+    // Visible normals: G1(wo) D(h) / (4 cos theta_o), D(h) = density / cos theta_h.
+    if (visible_normals_) return visible_scale_ * density / half_vector.z();
+    return density / (4.0f * wo_dot_h);
   }
-  switch (lobe_.frame) {
-    case LobeFrame::kNormal: {
-      if (!(wi.z() > 0.0f)) return 0.0f;
-      return PowerCosineDensity((wi.x() * wi.x() + wi.y() * wi.y()) / (1.0f + wi.z()));
-    }
-    case LobeFrame::kMirror: {
-      // |wi - m|^2 = 2 (1 - cos) for unit vectors.
-      const Vec3f axis(-wo_.x(), -wo_.y(), wo_.z());
-      if (!(wi.dot(axis) > 0.0f)) return 0.0f;
-      return PowerCosineDensity(0.5f * (wi - axis).squaredNorm());
-    }
-    case LobeFrame::kHalfVector: {
-      const Vec3f sum = wi + wo_;
-      const float norm_squared = sum.squaredNorm();
-      if (!(norm_squared > 0.0f)) return 0.0f;
-      const Vec3f half_vector = sum / std::sqrt(norm_squared);
-      const float wo_dot_h = wo_.dot(half_vector);
-      if (!(half_vector.z() > 0.0f) || !(wo_dot_h > 0.0f)) return 0.0f;
-      const float one_minus_cos =
-          (half_vector.x() * half_vector.x() + half_vector.y() * half_vector.y()) /
-          (1.0f + half_vector.z());
-      // The half-vector Jacobian dω_h/dω_i = 1/(4 wo.h) (core/sampling.h).
-      return PowerCosineDensity(one_minus_cos) / (4.0f * wo_dot_h);
-    }
+  const float one_minus_cos = AxisOneMinusCos(wi);
+  float jacobian = 1.0f;
+  if (lobe_.frame == LobeFrame::kHalfVector) {
+    float unused;
+    jacobian = PowerCosineAxis<LobeFrame::kHalfVector>(wi.x(), wi.y(), wi.z(), &unused);
   }
-  return 0.0f;
+  return PowerCosineDensity(one_minus_cos) * jacobian;
 }
 
 double LobeSampler::PeakDensity(const LobeCoordinates& lobe) {

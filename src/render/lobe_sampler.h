@@ -7,8 +7,8 @@
 // differs from 1 in its fifth digit, and a float cosine would keep one or two digits of what
 // the density depends on. 1 - cos(beta) comes from sines (|a - b|^2 / 2 between unit vectors,
 // or sin^2 / (1 + cos) about the normal), which keep their digits. A lobe with its own
-// distribution (the microfacet models' normals, models/lobe.h) is drawn and evaluated by
-// energy/monte_carlo.cpp in double.
+// distribution (the microfacet models' normals, models/lobe.h) is drawn and evaluated by its
+// own float functions where it has them (ggx), else by energy/monte_carlo.cpp in double.
 #pragma once
 
 #include <Eigen/Core>
@@ -32,9 +32,9 @@ namespace brdf {
 // §9.2: any weights that sum to one will do), while the light and cosine samples, most of
 // which fall far from a narrow lobe, skip its exponential.
 //
-// A lobe with its own distribution (the microfacet normals, evaluated in double through
-// function pointers) enters the weights through a cache-sized table instead: its density of
-// the half vector, D(h) cos(theta_h), at 4096 points uniform in sqrt(1 - cos theta_h),
+// A lobe with its own distribution (the microfacet normals, evaluated through the
+// distribution's function pointers) enters the weights through a cache-sized table instead: its
+// density of the half vector, D(h) cos(theta_h), at 4096 points uniform in sqrt(1 - cos theta_h),
 // interpolated linearly. For the same reason as the core the weights need not be exact, only
 // the same for every technique; the lobe's own sample still divides by its exact pdf.
 struct LobeTechnique {
@@ -66,9 +66,19 @@ class LobeSampler {
   Vec3f Sample(float u0, float u1) const;
   // The density of wi in solid angle.
   float Pdf(const Vec3f& wi) const;
+  // The same for a wi whose MisPdf is mis_pdf > 0 (inside the core): a power cosine's MisPdf
+  // is its Pdf there, so only a distribution of its own evaluates again.
+  float PdfInCore(const Vec3f& wi, float mis_pdf) const {
+    return lobe_.distribution == nullptr ? mis_pdf : Pdf(wi);
+  }
   // The lobe's pdf as the weights count it: 0 outside the core; inside, Pdf (a power
   // cosine) or the tabulated density (a distribution of its own).
   float MisPdf(const Vec3f& wi) const;
+
+  // Sample and MisPdf for `count` samples (directions one array per coordinate). A power
+  // cosine's run in loops that vectorize (the same numbers as one at a time).
+  void SampleBatch(const float* u0, const float* u1, int count, float* x, float* y, float* z) const;
+  void MisPdfBatch(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
 
   // The largest density of wi the lobe reaches (at its axis, seen from the normal), per sr.
   static double PeakDensity(const LobeCoordinates& lobe);
@@ -77,13 +87,26 @@ class LobeSampler {
   // 1 - cos of the angle between the lobe's axis and wi (or its half vector with wo); 2 where
   // there is none.
   float AxisOneMinusCos(const Vec3f& wi) const;
+  // One sample of a power cosine in the lobe's frame, inline and without branches for the
+  // batch loops (lobe_sampler.cpp): for wi = (x, y, z), AxisOneMinusCos in *one_minus_cos and
+  // the factor from the density of the axis variable to that of wi (the half-vector
+  // Jacobian; 1 in wi's own frames; 0 where wi has none); and the draw from (u0, u1).
+  template <LobeFrame kFrame>
+  float PowerCosineAxis(float x, float y, float z, float* one_minus_cos) const;
+  template <LobeFrame kFrame>
+  void PowerCosineSample(float u0, float u1, float* x, float* y, float* z) const;
+  template <LobeFrame kFrame>
+  void PowerCosineSamples(const float* u0, const float* u1, int count, float* x, float* y,
+                          float* z) const;
+  // MisPdfBatch in the lobe's frame (a distribution's: the half vector).
+  template <LobeFrame kFrame>
+  void AxisMisPdfs(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
   // (e+1)/(2 pi) (1 - one_minus_cos)^e, keeping the digits of a cosine near 1.
-  float PowerCosineDensity(float one_minus_cos) const {
-    if (!(one_minus_cos < 1.0f)) return 0.0f;
-    return normalization_ * std::exp(exponent_ * LogOneMinus(one_minus_cos));
+  BRDF_LANE_FUNCTION float PowerCosineDensity(float one_minus_cos) const {
+    const float density =
+        normalization_ * ExpNonPositive(exponent_ * LogOneMinus(std::min(one_minus_cos, 1.0f)));
+    return one_minus_cos < 1.0f ? density : 0.0f;
   }
-  // A direction about +z of the lobe's frame: 1 - cos(beta) = 1 - u^(1/(e+1)), likewise.
-  Vec3f SampleAboutAxis(float u0, float u1) const;
 
   const LobeTechnique& technique_;
   LobeCoordinates lobe_;
@@ -92,6 +115,7 @@ class LobeSampler {
   // (4 cos theta_o cos theta_h), as D_wo(h) = G1(wo) (wo.h) D(h) / cos theta_o; else
   // 1 / (4 wo.h)), without the cos theta_h or wo.h factor, which MisPdf applies.
   float visible_scale_ = 0.0f;
+  bool visible_normals_ = false;  // a distribution drawing the normals visible from wo
   Vec3f wo_;
   Vec3 wo_double_;
   float exponent_ = 1.0f, normalization_ = 1.0f, inverse_exponent_plus_one_ = 0.5f;

@@ -108,29 +108,30 @@ class TabulatedMaterial : public Material {
     return Interpolate(coordinates, cells_);
   }
 
-  // ToHalfDiff (core/angles.h) in float, written out: with h = (sin theta_h cos phi_h,
-  // sin theta_h sin phi_h, cos theta_h), rotating wi by -phi_h about z and then by -theta_h
-  // about y expresses it in the frame (Rz(phi_h) Ry(theta_h) x, Rz(phi_h) y, h).
   RgbF EvalFloat(const Vec3f& wi, const Vec3f& wo) const override {
     if (!(wi.z() > 0.0f) || !(wo.z() > 0.0f)) return RgbF::Zero();
-    const Vec3f sum = wi + wo;
-    const Vec3f h = sum / std::sqrt(sum.squaredNorm());
-    const float sin_theta_h = std::sqrt(h.x() * h.x() + h.y() * h.y());
-    const bool at_pole = !(sin_theta_h > 0.0f);  // phi_h = 0, as Phi() gives
-    const float cos_phi_h = at_pole ? 1.0f : h.x() / sin_theta_h;
-    const float sin_phi_h = at_pole ? 0.0f : h.y() / sin_theta_h;
-    const float along_phi_h = cos_phi_h * wi.x() + sin_phi_h * wi.y();
-    const float diff_x = h.z() * along_phi_h - sin_theta_h * wi.z();
-    const float diff_y = cos_phi_h * wi.y() - sin_phi_h * wi.x();
-    const float diff_z = wi.dot(h);
-    // [-pi, pi], folded into [0, pi) by reciprocity (selects: render/float_math.h).
-    float phi_d = Atan2(diff_y, diff_x);
-    phi_d += static_cast<float>(phi_d < 0.0f) * kPiF;
-    phi_d -= static_cast<float>(phi_d >= kPiF) * kPiF;
-    const float coordinates[3] = {Atan2(sin_theta_h, h.z()),
-                                  Atan2(std::sqrt(diff_x * diff_x + diff_y * diff_y), diff_z),
-                                  phi_d};
+    float coordinates[3];
+    HalfDiffFloat(wi.x(), wi.y(), wi.z(), wo, &coordinates[0], &coordinates[1], &coordinates[2]);
     return Interpolate(coordinates, cells_float_);
+  }
+  // The angles first, a batch at a time (the loop vectorizes), then the blends, which gather.
+  void EvalFloatBatch(const float* wi_x, const float* wi_y, const float* wi_z, const Vec3f& wo,
+                      int count, RgbF* f) const override {
+    constexpr int kChunk = 16;
+    alignas(16) float theta_h[kChunk], theta_d[kChunk], phi_d[kChunk];
+    for (int first = 0; first < count; first += kChunk) {
+      const int n = std::min(kChunk, count - first);
+      for (int k = 0; k < n; ++k) {
+        HalfDiffFloat(wi_x[first + k], wi_y[first + k], wi_z[first + k], wo, &theta_h[k],
+                      &theta_d[k], &phi_d[k]);
+      }
+      for (int k = 0; k < n; ++k) {
+        const float coordinates[3] = {theta_h[k], theta_d[k], phi_d[k]};
+        f[first + k] = wi_z[first + k] > 0.0f && wo.z() > 0.0f
+                           ? Interpolate(coordinates, cells_float_)
+                           : RgbF::Zero();
+      }
+    }
   }
   std::string Describe() const override { return description_; }
   std::optional<LobeCoordinates> SpecularLobe() const override { return lobe_; }
@@ -138,6 +139,34 @@ class TabulatedMaterial : public Material {
  private:
   static constexpr double kRange[3] = {kPi / 2, kPi / 2, kPi};
 
+  // ToHalfDiff (core/angles.h) in float for wi and wo above the horizon, written out: with
+  // h = (sin theta_h cos phi_h, sin theta_h sin phi_h, cos theta_h), rotating wi by -phi_h
+  // about z and then by -theta_h about y expresses it in the frame
+  // (Rz(phi_h) Ry(theta_h) x, Rz(phi_h) y, h). Selects instead of branches (render/
+  // float_math.h), so that a loop over a batch vectorizes; phi_d comes folded into [0, pi).
+  static void HalfDiffFloat(float wi_x, float wi_y, float wi_z, const Vec3f& wo, float* theta_h,
+                            float* theta_d, float* phi_d) {
+    const float sum_x = wi_x + wo.x(), sum_y = wi_y + wo.y(), sum_z = wi_z + wo.z();
+    const float norm = std::sqrt(sum_x * sum_x + sum_y * sum_y + sum_z * sum_z);
+    const float h_x = sum_x / norm, h_y = sum_y / norm, h_z = sum_z / norm;
+    const float sin_theta_h = std::sqrt(h_x * h_x + h_y * h_y);
+    // At the pole phi_h = 0, as Phi() gives.
+    const float at_pole = static_cast<float>(!(sin_theta_h > 0.0f));
+    const float divisor = std::max(sin_theta_h, 1.17549435e-38f);  // FLT_MIN: no 0 / 0
+    const float cos_phi_h = at_pole + (1.0f - at_pole) * (h_x / divisor);
+    const float sin_phi_h = (1.0f - at_pole) * (h_y / divisor);
+    const float along_phi_h = cos_phi_h * wi_x + sin_phi_h * wi_y;
+    const float diff_x = h_z * along_phi_h - sin_theta_h * wi_z;
+    const float diff_y = cos_phi_h * wi_y - sin_phi_h * wi_x;
+    const float diff_z = wi_x * h_x + wi_y * h_y + wi_z * h_z;
+    // [-pi, pi], folded into [0, pi) by reciprocity.
+    float phi = Atan2(diff_y, diff_x);
+    phi += static_cast<float>(phi < 0.0f) * kPiF;
+    phi -= static_cast<float>(phi >= kPiF) * kPiF;
+    *theta_h = Atan2(sin_theta_h, h_z);
+    *theta_d = Atan2(std::sqrt(diff_x * diff_x + diff_y * diff_y), diff_z);
+    *phi_d = phi;
+  }
   // A half-vector lobe for the renderer to draw from, read off the table: the luminance
   // profile over theta_h (averaged over phi_d and theta_d below 45 deg, away from grazing)
   // falls from its peak at theta_h = 0 to half its height above the floor at theta_half; the
@@ -208,6 +237,11 @@ class TabulatedMaterial : public Material {
 };
 
 }  // namespace
+
+void Material::EvalFloatBatch(const float* wi_x, const float* wi_y, const float* wi_z,
+                              const Vec3f& wo, int count, RgbF* f) const {
+  for (int k = 0; k < count; ++k) f[k] = EvalFloat(Vec3f(wi_x[k], wi_y[k], wi_z[k]), wo);
+}
 
 std::unique_ptr<Material> ModelMaterialOf(Model model) {
   return std::make_unique<ModelMaterial>(std::move(model));

@@ -36,6 +36,12 @@ class Material {
   virtual RgbF EvalFloat(const Vec3f& wi, const Vec3f& wo) const {
     return Eval(wi.cast<double>(), wo.cast<double>()).cast<float>();
   }
+  // EvalFloat at `count` directions wi (one array per coordinate) for one wo, into
+  // f[0, count): the renderer shades a batch of samples at a time. The default calls
+  // EvalFloat for each; the tabulated interpolant locates the whole batch in a loop that
+  // vectorizes.
+  virtual void EvalFloatBatch(const float* wi_x, const float* wi_y, const float* wi_z,
+                              const Vec3f& wo, int count, RgbF* f) const;
   // What it is, for the summary line: a model string or "FILE (format, interpolation)".
   virtual std::string Describe() const = 0;
   // The specular lobe the renderer draws directions from, besides the environment and the

@@ -91,6 +91,12 @@ class EnvironmentEstimator {
     uint32_t light_pixel[kBatch] = {}, cosine_pixel[kBatch] = {}, lobe_pixel[kBatch] = {};
     DirectionBatch light_world = {}, light_local = {}, cosine_local = {}, cosine_world = {},
                    lobe_local = {}, lobe_world = {};
+    alignas(16) float lobe_u0[kBatch] = {}, lobe_u1[kBatch] = {};
+    // The lobe's pdf as the weights count it (MisPdf: zero outside its core, lobe_sampler.h),
+    // at each technique's samples.
+    alignas(16) float light_lobe_pdf[kBatch] = {}, cosine_lobe_pdf[kBatch] = {},
+                      lobe_lobe_pdf[kBatch] = {};
+    RgbF light_f[kBatch], cosine_f[kBatch], lobe_f[kBatch];
     Rgb sum = Rgb::Zero();
     double luminance_sum = 0.0, luminance_squares = 0.0;
     for (int first = 0; first < spp_; first += kBatch) {
@@ -105,13 +111,12 @@ class EnvironmentEstimator {
         cosine_u0[k] = random.UniformFloat();
         cosine_u1[k] = random.UniformFloat();
         if (lobe) {
-          const float w0 = random.UniformFloat();
-          const float w1 = random.UniformFloat();
-          const Vec3f wi = lobe->Sample(w0, w1);
-          lobe_local.x[k] = wi.x();
-          lobe_local.y[k] = wi.y();
-          lobe_local.z[k] = wi.z();
+          lobe_u0[k] = random.UniformFloat();
+          lobe_u1[k] = random.UniformFloat();
         }
+      }
+      if (lobe) {
+        lobe->SampleBatch(lobe_u0, lobe_u1, kBatch, lobe_local.x, lobe_local.y, lobe_local.z);
       }
       // SampleCosineHemisphere (core/sampling.h) in float: the polar map.
       for (int k = 0; k < kBatch; ++k) {
@@ -142,17 +147,27 @@ class EnvironmentEstimator {
                                  &light_world.z[k], &light_sin_theta[k]);
       }
       Transform(to_local, light_world, &light_local);
+      // The material at every sample of the batch (some are not shaded: below the horizon,
+      // outside the lobe's core; those cost an early return).
+      material_.EvalFloatBatch(light_local.x, light_local.y, light_local.z, wo, count, light_f);
+      material_.EvalFloatBatch(cosine_local.x, cosine_local.y, cosine_local.z, wo, count, cosine_f);
+      if (lobe) {
+        material_.EvalFloatBatch(lobe_local.x, lobe_local.y, lobe_local.z, wo, count, lobe_f);
+        lobe->MisPdfBatch(light_local.x, light_local.y, light_local.z, kBatch, light_lobe_pdf);
+        lobe->MisPdfBatch(cosine_local.x, cosine_local.y, cosine_local.z, kBatch, cosine_lobe_pdf);
+        lobe->MisPdfBatch(lobe_local.x, lobe_local.y, lobe_local.z, kBatch, lobe_lobe_pdf);
+      }
 
       for (int k = 0; k < count; ++k) {
-        // The lobe's pdf enters the weights as MisPdf (zero outside its core, lobe_sampler.h).
         RgbF estimate = RgbF::Zero();
         {
           const Vec3f wi(light_local.x[k], light_local.y[k], light_local.z[k]);
           const Environment::Texel& texel = environment_.texel(light_pixel[k]);
           const float pdf = Environment::PdfFloat(texel, light_sin_theta[k]);
           if (wi.z() > 0.0f && pdf > 0.0f) {
-            const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
-            estimate += Shade(wi, wo, texel, pdf, pdf, {pdf, wi.z() * kInvPiF, pdf_lobe}, missing);
+            const float pdf_lobe = light_lobe_pdf[k];
+            estimate +=
+                Shade(light_f[k], wi, texel, pdf, pdf, {pdf, wi.z() * kInvPiF, pdf_lobe}, missing);
           }
         }
         {
@@ -161,19 +176,20 @@ class EnvironmentEstimator {
             const Environment::Texel& texel = environment_.texel(cosine_pixel[k]);
             const float pdf = wi.z() * kInvPiF;
             const float pdf_light = Environment::PdfFloat(texel, cosine_sin_theta[k]);
-            const float pdf_lobe = lobe ? lobe->MisPdf(wi) : 0.0f;
-            estimate += Shade(wi, wo, texel, pdf, pdf, {pdf_light, pdf, pdf_lobe}, missing);
+            const float pdf_lobe = cosine_lobe_pdf[k];
+            estimate +=
+                Shade(cosine_f[k], wi, texel, pdf, pdf, {pdf_light, pdf, pdf_lobe}, missing);
           }
         }
         if (lobe) {
           const Vec3f wi(lobe_local.x[k], lobe_local.y[k], lobe_local.z[k]);
-          const float weighted = wi.z() > 0.0f ? lobe->MisPdf(wi) : 0.0f;
-          const float pdf = weighted > 0.0f ? lobe->Pdf(wi) : 0.0f;
+          const float weighted = wi.z() > 0.0f ? lobe_lobe_pdf[k] : 0.0f;
+          const float pdf = weighted > 0.0f ? lobe->PdfInCore(wi, weighted) : 0.0f;
           if (pdf > 0.0f) {
             const Environment::Texel& texel = environment_.texel(lobe_pixel[k]);
             const float pdf_light = Environment::PdfFloat(texel, lobe_sin_theta[k]);
-            estimate += Shade(wi, wo, texel, pdf, weighted, {pdf_light, wi.z() * kInvPiF, weighted},
-                              missing);
+            estimate += Shade(lobe_f[k], wi, texel, pdf, weighted,
+                              {pdf_light, wi.z() * kInvPiF, weighted}, missing);
           }
         }
         const Rgb value = estimate.cast<double>();
@@ -213,12 +229,13 @@ class EnvironmentEstimator {
 
   // f L cos(theta_i) w_t / p_t with the power heuristic's w_t = q_t^2 / sum q^2 over the
   // weights' pdfs q = (q_light, q_cosine, q_lobe) (an unused technique's is 0): the sample of
-  // technique t, drawn with pdf p_t, whose weight pdf is q_t.
-  RgbF Shade(const Vec3f& wi, const Vec3f& wo, const Environment::Texel& texel, float pdf,
-             float weight_pdf, const std::array<float, 3>& weight_pdfs, int64_t* missing) const {
+  // technique t, drawn with pdf p_t, whose weight pdf is q_t; `material` is f(wi, wo).
+  static RgbF Shade(const RgbF& material, const Vec3f& wi, const Environment::Texel& texel,
+                    float pdf, float weight_pdf, const std::array<float, 3>& weight_pdfs,
+                    int64_t* missing) {
     const float sum_squares = weight_pdfs[0] * weight_pdfs[0] + weight_pdfs[1] * weight_pdfs[1] +
                               weight_pdfs[2] * weight_pdfs[2];
-    const RgbF f = FiniteOrZero(material_.EvalFloat(wi, wo), missing);
+    const RgbF f = FiniteOrZero(material, missing);
     const RgbF radiance(texel.rgb[0], texel.rgb[1], texel.rgb[2]);
     return f * radiance * (wi.z() * (weight_pdf / sum_squares) * (weight_pdf / pdf));
   }
