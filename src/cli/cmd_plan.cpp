@@ -214,7 +214,8 @@ Command AddPlanCommand(CLI::App& parent) {
                   "incidence or detector direction, default 0)");
   app->add_option("--criterion", options->criterion,
                   "d (maximise det of the information), a (minimise the sum of squared relative "
-                  "standard errors) or param:NAME (one parameter's)")
+                  "standard errors) or param:NAME (one parameter's, e.g. param:alpha for a sharp "
+                  "lobe's width, at some cost to the others)")
       ->capture_default_str();
   app->add_option("--candidates", options->candidates,
                   "the geometries to choose from, as a brdf measure schedule (e.g. "
