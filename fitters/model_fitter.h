@@ -15,6 +15,7 @@
 #include "fitters/fit.h"
 #include "fitters/parallel_cost.h"
 #include "fitters/parameterization.h"
+#include "fitters/power_cosine_cost.h"
 #include "fitters/residual.h"
 
 namespace brdf::fitters {
@@ -259,14 +260,19 @@ class ModelFitter {
   const FitOptions& options() const { return options_; }
 
  private:
+  // The power-cosine models' batches carry their hand-written Jacobian (power_cosine_cost.h);
+  // the others are differentiated automatically.
   ceres::CostFunction* MakeCost(const FitSample* samples, int count) const {
-    auto* residual =
-        new BatchResidual<ModelType>(options_.grey_specular, options_.loss, samples, count);
     using Residual = BatchResidual<ModelType>;
-    if constexpr (!kLobed) {
-      return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3>(residual, 3 * count);
+    const bool grey = options_.grey_specular;
+    if constexpr (ModelType::kFamily == models::ModelFamily::kPowerCosine) {
+      return new PowerCosineBatchCost<ModelType>(grey, options_.loss, samples, count);
+    } else if constexpr (!kLobed) {
+      return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3>(
+          new Residual(grey, options_.loss, samples, count), 3 * count);
     } else {
-      if (options_.grey_specular) {
+      auto* residual = new Residual(grey, options_.loss, samples, count);
+      if (grey) {
         return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3, 1, 1>(residual,
                                                                                   3 * count);
       }
