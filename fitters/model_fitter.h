@@ -12,10 +12,10 @@
 #include <memory>
 #include <vector>
 
+#include "fitters/analytic_cost.h"
 #include "fitters/fit.h"
 #include "fitters/parallel_cost.h"
 #include "fitters/parameterization.h"
-#include "fitters/power_cosine_cost.h"
 #include "fitters/residual.h"
 
 namespace brdf::fitters {
@@ -260,24 +260,16 @@ class ModelFitter {
   const FitOptions& options() const { return options_; }
 
  private:
-  // The power-cosine models' batches carry their hand-written Jacobian (power_cosine_cost.h);
-  // the others are differentiated automatically.
+  // A lobed model's batches carry their hand-written Jacobian (analytic_cost.h); lambert's are
+  // differentiated automatically.
   ceres::CostFunction* MakeCost(const FitSample* samples, int count) const {
     using Residual = BatchResidual<ModelType>;
-    const bool grey = options_.grey_specular;
-    if constexpr (ModelType::kFamily == models::ModelFamily::kPowerCosine) {
-      return new PowerCosineBatchCost<ModelType>(grey, options_.loss, samples, count);
-    } else if constexpr (!kLobed) {
-      return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3>(
-          new Residual(grey, options_.loss, samples, count), 3 * count);
+    if constexpr (kLobed) {
+      return new AnalyticBatchCost<ModelType>(options_.grey_specular, options_.loss, samples,
+                                              count);
     } else {
-      auto* residual = new Residual(grey, options_.loss, samples, count);
-      if (grey) {
-        return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3, 1, 1>(residual,
-                                                                                  3 * count);
-      }
-      return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3, 3, 1>(residual,
-                                                                                3 * count);
+      return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3>(
+          new Residual(options_.grey_specular, options_.loss, samples, count), 3 * count);
     }
   }
 

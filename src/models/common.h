@@ -111,7 +111,7 @@ inline T ClampedPow(const D& x, const T& e) {
 // The power-cosine models' common form, f = rho_d/pi + rho_s N(m) c^m: each model supplies its
 // lobe cosine c(wi, wo) (M::LobeCosine) and normalization N(m) (M::LobeNormalization). One
 // definition for evaluation and for the fitter's analytic derivatives
-// (fitters/power_cosine_cost.h), which take d f / d m = rho_s (N'(m) + N(m) ln c) c^m from the same
+// (fitters/analytic_cost.h), which take d f / d m = rho_s (N'(m) + N(m) ln c) c^m from the same
 // pieces.
 template <typename T>
 inline RgbT<T> PowerCosineValue(const T* params, const T& lobe) {
