@@ -274,17 +274,12 @@ bool VariableCovariance(const ModelFitter<ModelType>& fitter, ceres::Problem* pr
 // of the parameterization with Jets.
 template <typename ModelType>
 Eigen::MatrixXd ParamGradients(const ModelFitter<ModelType>& fitter, const Variables& v) {
-  using Jet = ceres::Jet<double, FitVariables::kMaxVariables>;
   const int n = fitter.FreeVariables();
-  Jet d[3], s[3], shape[1];
-  int slot = 0;
-  for (int c = 0; c < 3; ++c) d[c] = Jet(v.d[c], slot++);
-  for (int c = 0; c < fitter.SpecularSize(); ++c) s[c] = Jet(v.s[c], slot++);
-  if (ModelFitter<ModelType>::kLobed) shape[0] = Jet(v.shape[0], slot++);
-  Jet params[ModelType::kNumParams];
-  VariablesToParams<ModelType, Jet>(fitter.options().grey_specular, d, s, shape, params);
-  Eigen::MatrixXd gradients(ModelType::kNumParams, n);
-  for (int p = 0; p < ModelType::kNumParams; ++p) gradients.row(p) = params[p].v.head(n);
+  double params[ModelType::kNumParams];
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> gradients(
+      ModelType::kNumParams, n);
+  ParamsAndGradients<ModelType>(fitter.options().grey_specular, v.d, v.s, v.shape, params,
+                                gradients.data());
   return gradients;
 }
 

@@ -12,6 +12,7 @@
 #include <memory>
 #include <vector>
 
+#include "fitters/analytic_cost.h"
 #include "fitters/fit.h"
 #include "fitters/parallel_cost.h"
 #include "fitters/parameterization.h"
@@ -259,19 +260,16 @@ class ModelFitter {
   const FitOptions& options() const { return options_; }
 
  private:
+  // A lobed model's batches carry their hand-written Jacobian (analytic_cost.h); lambert's are
+  // differentiated automatically.
   ceres::CostFunction* MakeCost(const FitSample* samples, int count) const {
-    auto* residual =
-        new BatchResidual<ModelType>(options_.grey_specular, options_.loss, samples, count);
     using Residual = BatchResidual<ModelType>;
-    if constexpr (!kLobed) {
-      return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3>(residual, 3 * count);
+    if constexpr (kLobed) {
+      return new AnalyticBatchCost<ModelType>(options_.grey_specular, options_.loss, samples,
+                                              count);
     } else {
-      if (options_.grey_specular) {
-        return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3, 1, 1>(residual,
-                                                                                  3 * count);
-      }
-      return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3, 3, 1>(residual,
-                                                                                3 * count);
+      return new ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3>(
+          new Residual(options_.grey_specular, options_.loss, samples, count), 3 * count);
     }
   }
 

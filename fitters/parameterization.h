@@ -19,6 +19,8 @@
 // shares one s for all channels (one rho_s or f0, as for dielectric coatings).
 #pragma once
 
+#include <ceres/jet.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -86,6 +88,29 @@ void VariablesToParams(bool grey_specular, const T* d, const T* s, const T* shap
       params[M::kRhoD + c] = budget * Logistic(d[c]);
     }
     params[M::kAlpha] = exp(shape[0]);
+  }
+}
+
+// VariablesToParams and its Jacobian, d params / d variables (row-major, kNumParams rows of
+// `variables` columns: d[3], then s[1 or 3] and shape[1] for a lobed model), by automatic
+// differentiation with Jets. The parameters are the same bits as VariablesToParams<M, double>'s.
+template <typename M>
+void ParamsAndGradients(bool grey_specular, const double* d, const double* s, const double* shape,
+                        double* params, double* gradients) {
+  using Jet = ceres::Jet<double, FitVariables::kMaxVariables>;
+  constexpr bool kLobed = kHasLobe<M>;
+  const int s_size = kLobed ? (grey_specular ? 1 : 3) : 0;
+  const int variables = 3 + s_size + (kLobed ? 1 : 0);
+  Jet d_jet[3], s_jet[3], shape_jet[1];
+  int slot = 0;
+  for (int c = 0; c < 3; ++c) d_jet[c] = Jet(d[c], slot++);
+  for (int c = 0; c < s_size; ++c) s_jet[c] = Jet(s[c], slot++);
+  if (kLobed) shape_jet[0] = Jet(shape[0], slot++);
+  Jet params_jet[M::kNumParams];
+  VariablesToParams<M, Jet>(grey_specular, d_jet, s_jet, shape_jet, params_jet);
+  for (int p = 0; p < M::kNumParams; ++p) {
+    params[p] = params_jet[p].a;
+    for (int k = 0; k < variables; ++k) gradients[p * variables + k] = params_jet[p].v[k];
   }
 }
 

@@ -12,6 +12,21 @@
 
 namespace brdf::fitters {
 
+// The model's value f as the loss compares it with LossTarget (fit_samples.h): f, log(1 + f cos
+// theta_i) or f cos theta_i; and its derivative d/df, for the analytic Jacobians.
+template <typename T>
+T LossPrediction(Loss loss, const T& f, double cos_theta_i) {
+  using std::log;
+  if (loss == Loss::kLog) return log(T(1) + f * cos_theta_i);
+  if (loss == Loss::kCosineL2) return f * cos_theta_i;
+  return f;
+}
+inline double LossPredictionDerivative(Loss loss, double f, double cos_theta_i) {
+  if (loss == Loss::kLog) return cos_theta_i / (1.0 + f * cos_theta_i);
+  if (loss == Loss::kCosineL2) return cos_theta_i;
+  return 1.0;
+}
+
 template <typename ModelType>
 class BatchResidual {
  public:
@@ -39,7 +54,6 @@ class BatchResidual {
  private:
   template <typename T>
   bool Residuals(const T* params, T* residuals) const {
-    using std::log;
     for (int k = 0; k < count_; ++k) {
       const FitSample& sample = samples_[k];
       // Directions stay plain doubles: only the parameters carry derivatives.
@@ -47,13 +61,8 @@ class BatchResidual {
       const double cos_theta_i = sample.cos_theta_i();
       const Rgb target = LossTarget(loss_, sample.value, cos_theta_i);
       for (int c = 0; c < 3; ++c) {
-        T predicted = f[c];
-        if (loss_ == Loss::kLog) {
-          predicted = log(T(1) + f[c] * cos_theta_i);
-        } else if (loss_ == Loss::kCosineL2) {
-          predicted = f[c] * cos_theta_i;
-        }
-        residuals[3 * k + c] = (predicted - target[c]) * sample.scale[c];
+        residuals[3 * k + c] =
+            (LossPrediction(loss_, f[c], cos_theta_i) - target[c]) * sample.scale[c];
       }
     }
     return true;

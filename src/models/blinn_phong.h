@@ -38,10 +38,16 @@ struct BlinnPhong : LobedSlots {
 
   template <typename T, typename D>
   static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
-    if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
-    const T& m = params[kExponent];
-    const T lobe = (m + T(8)) * T(0.125 * kInvPi) * ClampedPow(CosThetaHalf(wi, wo), m);
-    return LoadRgb(params, kRhoD) * T(kInvPi) + LoadRgb(params, kRhoS) * lobe;
+    return EvalPowerCosine<BlinnPhong>(params, wi, wo);
+  }
+  // The lobe's cosine, cos(theta_h), and its normalization (m+8)/(8 pi) (EvalPowerCosine).
+  template <typename D>
+  static D LobeCosine(const Vec3T<D>& wi, const Vec3T<D>& wo) {
+    return CosThetaHalf(wi, wo);
+  }
+  template <typename T>
+  static T LobeNormalization(const T& m) {
+    return (m + T(8)) * T(0.125 * kInvPi);
   }
 
   // cos(theta_h) = z-component of normalize(wi + wo).

@@ -34,12 +34,17 @@ struct BlinnPhongExact : LobedSlots {
 
   template <typename T, typename D>
   static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
+    return EvalPowerCosine<BlinnPhongExact>(params, wi, wo);
+  }
+  // The lobe's cosine, cos(theta_h), and the normalization above (EvalPowerCosine).
+  template <typename D>
+  static D LobeCosine(const Vec3T<D>& wi, const Vec3T<D>& wo) {
+    return BlinnPhong::CosThetaHalf(wi, wo);
+  }
+  template <typename T>
+  static T LobeNormalization(const T& m) {
     using std::pow;
-    if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
-    const T& m = params[kExponent];
-    const T normalization = (m + T(2)) * (m + T(4)) / (T(8 * kPi) * (pow(T(2), -m / T(2)) + m));
-    const T lobe = normalization * ClampedPow(BlinnPhong::CosThetaHalf(wi, wo), m);
-    return LoadRgb(params, kRhoD) * T(kInvPi) + LoadRgb(params, kRhoS) * lobe;
+    return (m + T(2)) * (m + T(4)) / (T(8 * kPi) * (pow(T(2), -m / T(2)) + m));
   }
 };
 

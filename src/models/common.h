@@ -108,4 +108,21 @@ inline T ClampedPow(const D& x, const T& e) {
   return pow(x, e);
 }
 
+// The power-cosine models' common form, f = rho_d/pi + rho_s N(m) c^m: each model supplies its
+// lobe cosine c(wi, wo) (M::LobeCosine) and normalization N(m) (M::LobeNormalization). One
+// definition for evaluation and for the fitter's analytic derivatives
+// (fitters/analytic_cost.h), which take d f / d m = rho_s (N'(m) + N(m) ln c) c^m from the same
+// pieces.
+template <typename T>
+inline RgbT<T> PowerCosineValue(const T* params, const T& lobe) {
+  return LoadRgb(params, LobedSlots::kRhoD) * T(kInvPi) + LoadRgb(params, LobedSlots::kRhoS) * lobe;
+}
+template <typename M, typename T, typename D>
+inline RgbT<T> EvalPowerCosine(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
+  if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
+  const T& m = params[LobedSlots::kExponent];
+  const T lobe = M::LobeNormalization(m) * ClampedPow(M::LobeCosine(wi, wo), m);
+  return PowerCosineValue(params, lobe);
+}
+
 }  // namespace brdf::models

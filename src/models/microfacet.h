@@ -87,25 +87,40 @@ struct MicrofacetModel {
              "roughness (rms slope for beckmann; larger is broader)"}};
   }
 
-  template <typename T, typename D>
-  static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
+  // The angles the lobe depends on, for wi and wo above the horizon: theta_i, theta_o, theta_d
+  // (wi to the half vector h = normalize(wi + wo)) and theta_h (h to the normal).
+  template <typename D>
+  struct HalfAngles {
+    D cos_theta_i, cos_theta_o, cos_theta_d, cos_theta_h;
+  };
+  template <typename D>
+  static HalfAngles<D> Angles(const Vec3T<D>& wi, const Vec3T<D>& wo) {
     using std::sqrt;
-    if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
     const Vec3T<D> sum = wi + wo;
     const Vec3T<D> half_vector = sum / D(sqrt(sum.squaredNorm()));
-    const D cos_theta_i = CosTheta(wi), cos_theta_o = CosTheta(wo);
-    const D cos_theta_d = wi.dot(half_vector);
-    const T& alpha = params[kAlpha];
-    const T distribution = Model::template D<T>(CosTheta(half_vector), alpha);
+    return {CosTheta(wi), CosTheta(wo), wi.dot(half_vector), CosTheta(half_vector)};
+  }
+  // D G2 / (4 cos theta_i cos theta_o): the lobe without Fresnel, a function of alpha alone
+  // for given angles (the fitter differentiates it with a one-variable Jet).
+  template <typename T, typename D>
+  static T Specular(const HalfAngles<D>& angles, const T& alpha) {
+    const T distribution = Model::template D<T>(angles.cos_theta_h, alpha);
     // Height-correlated Smith G2 (Heitz, "Understanding the masking-shadowing function in
     // microfacet-based BRDFs", JCGT 3(2), 2014, eq. 99).
-    const T masking = T(1) / (T(1) + Model::template Lambda<T>(cos_theta_i, alpha) +
-                              Model::template Lambda<T>(cos_theta_o, alpha));
-    const T specular = distribution * masking / T(4 * cos_theta_i * cos_theta_o);
+    const T masking = T(1) / (T(1) + Model::template Lambda<T>(angles.cos_theta_i, alpha) +
+                              Model::template Lambda<T>(angles.cos_theta_o, alpha));
+    return distribution * masking / T(4 * angles.cos_theta_i * angles.cos_theta_o);
+  }
+
+  template <typename T, typename D>
+  static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
+    if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
+    const HalfAngles<D> angles = Angles(wi, wo);
+    const T specular = Specular(angles, params[kAlpha]);
     RgbT<T> f;
     for (int c = 0; c < 3; ++c) {
-      f[c] =
-          params[kRhoD + c] * T(kInvPi) + SchlickFresnel(cos_theta_d, params[kF0 + c]) * specular;
+      f[c] = params[kRhoD + c] * T(kInvPi) +
+             SchlickFresnel(angles.cos_theta_d, params[kF0 + c]) * specular;
     }
     return f;
   }

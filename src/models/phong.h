@@ -33,11 +33,17 @@ struct Phong : LobedSlots {
 
   template <typename T, typename D>
   static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
-    if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
-    const T& n = params[kExponent];
-    const D cos_alpha = MirrorDirection(wi).dot(wo);
-    const T lobe = (n + T(2)) * T(0.5 * kInvPi) * ClampedPow(cos_alpha, n);
-    return LoadRgb(params, kRhoD) * T(kInvPi) + LoadRgb(params, kRhoS) * lobe;
+    return EvalPowerCosine<Phong>(params, wi, wo);
+  }
+  // The lobe's cosine, cos(alpha) between wo and wi's mirror direction, and its normalization
+  // (n+2)/(2 pi) (EvalPowerCosine).
+  template <typename D>
+  static D LobeCosine(const Vec3T<D>& wi, const Vec3T<D>& wo) {
+    return MirrorDirection(wi).dot(wo);
+  }
+  template <typename T>
+  static T LobeNormalization(const T& n) {
+    return (n + T(2)) * T(0.5 * kInvPi);
   }
 };
 
