@@ -92,6 +92,21 @@ TEST(RadianceFile, BrokenScanLinesNameTheByte) {
   }
 }
 
+// A tiled file whose tile description asks for tiles 134,217,730 rows high on a 4 x 3 image (a
+// fuzzer's find): OpenEXR would allocate a 2 GB row of tiles before reading a pixel. It is
+// rejected at the byte of the tiles attribute, read by hand from the file: 276.
+TEST(ExrFile, HostileTileDescriptionNamesItsByte) {
+  const std::string path = testing::TestPath("fuzz/regressions/fuzz_exr/tall-tiles.exr");
+  try {
+    ReadExr(path);
+    ADD_FAILURE() << "accepted";
+  } catch (const ByteError& error) {
+    EXPECT_EQ(error.offset(), 276) << error.what();
+    EXPECT_NE(std::string(error.what()).find("134217730"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find(path), std::string::npos) << error.what();
+  }
+}
+
 TEST(ExrFile, FloatRoundTripIsExact) {
   ScratchDir dir;
   const Image image = RandomHdrImage(37, 23, 1);

@@ -7,6 +7,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfThreading.h>
+#include <ImfTileDescription.h>
 #include <half.h>
 
 #include <algorithm>
@@ -50,6 +51,17 @@ Imf::Slice FloatSlice(Image* image, int channel, int min_x, int min_y, double fi
                           image->width, image->height, x_stride, y_stride, 1, 1, fill);
 }
 
+// The byte where the header attribute `name` of `type` starts (headers are small: it is looked
+// for in the first 64 kB), or 0 when it is not found there.
+int64_t AttributeByte(const std::string& path, const std::string& name, const std::string& type) {
+  std::string head(65536, '\0');
+  std::ifstream stream(path, std::ios::binary);
+  stream.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<size_t>(std::max<std::streamsize>(0, stream.gcount())));
+  const size_t attribute = head.find(name + std::string(1, '\0') + type + std::string(1, '\0'));
+  return attribute == std::string::npos ? 0 : static_cast<int64_t>(attribute);
+}
+
 // A header may claim any data window; the pixels it promises must fit in the file before
 // width x height float pixels are allocated. Uncompressed pixels take their full size; no
 // lossless codec of OpenEXR packs more than about 1000:1 (deflate's limit is 1032:1; PIZ and
@@ -67,17 +79,40 @@ void CheckExrSize(const Imf::Header& header, int64_t pixels, int64_t file_size,
   }
   const double ratio = header.compression() == Imf::NO_COMPRESSION ? 1.0 : kMaxCompressionRatio;
   if (pixel_bytes > ratio * static_cast<double>(file_size)) {
-    // Name the byte of the dataWindow attribute (headers are small: look in the first 64 kB).
-    std::string head(65536, '\0');
-    std::ifstream stream(path, std::ios::binary);
-    stream.read(head.data(), static_cast<std::streamsize>(head.size()));
-    head.resize(static_cast<size_t>(std::max<std::streamsize>(0, stream.gcount())));
-    const size_t attribute = head.find(std::string("dataWindow\0box2i", 16));
-    throw ByteError(path, attribute == std::string::npos ? 0 : static_cast<int64_t>(attribute),
+    throw ByteError(path, AttributeByte(path, "dataWindow", "box2i"),
                     "the header's data window promises " + std::to_string(pixels) + " pixels (" +
                         std::to_string(static_cast<int64_t>(pixel_bytes)) +
                         " bytes), more than a file of " + std::to_string(file_size) +
                         " bytes can hold");
+  }
+}
+
+// A tiled file read as scan lines keeps one row of tiles per channel (width x tile height
+// samples), and each tile in flight holds tile width x tile height: a hostile tile description
+// (a tile 134 million rows high on a 4 x 3 image) makes OpenEXR allocate gigabytes before it
+// reads a pixel. A tile larger than its image is legal (64 x 64 tiles on a 10 x 10 image are
+// common), so the bound is four times the image or 2^24 pixels (64 MB of floats a channel),
+// whichever is larger.
+void CheckExrTiles(const Imf::Header& header, int64_t width, int64_t pixels,
+                   const std::string& path) {
+  if (!header.hasTileDescription()) return;
+  const Imf::TileDescription& tiles = header.tileDescription();
+  const int64_t bound = std::max<int64_t>(4 * pixels, int64_t{1} << 24);
+  const int64_t tile_width = tiles.xSize, tile_height = tiles.ySize;
+  std::string problem;
+  if (tile_width < 1 || tile_height < 1) {
+    problem = "a tile of " + std::to_string(tile_width) + "x" + std::to_string(tile_height);
+  } else if (tile_width * tile_height > bound || width * tile_height > bound) {
+    problem = "tiles of " + std::to_string(tile_width) + "x" + std::to_string(tile_height) +
+              " pixels on an image " + std::to_string(width) + " pixels wide (at most " +
+              std::to_string(bound) + " pixels a tile or a row of tiles)";
+  } else if (tiles.mode >= Imf::NUM_LEVELMODES || tiles.roundingMode >= Imf::NUM_ROUNDINGMODES) {
+    problem = "an unknown level mode " + std::to_string(static_cast<int>(tiles.mode)) +
+              " or rounding mode " + std::to_string(static_cast<int>(tiles.roundingMode));
+  }
+  if (!problem.empty()) {
+    throw ByteError(path, AttributeByte(path, "tiles", "tiledesc"),
+                    "the header's tile description asks for " + problem);
   }
 }
 
@@ -101,6 +136,7 @@ Image ReadExr(const std::string& path) {
     CheckImageSize(width, height, path);
     const Imf::ChannelList& channels = file.header().channels();
     CheckExrSize(file.header(), width64 * height64, file_size, path);
+    CheckExrTiles(file.header(), width64, width64 * height64, path);
     const bool has_rgb =
         channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
     const bool has_y = channels.findChannel("Y") != nullptr;
