@@ -248,7 +248,7 @@ int main(int argc, char** argv) {
     fitters::FitOptions options;
     options.loss = fitters::Loss::kLog;
     const fitters::FitResult ggx = fitters::FitModel(measurement, "ggx", options);
-    const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement, options.loss);
+    const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement);
     const std::vector<fitters::FitSample> subset =
         fitters::Subsample(prepared.samples, kStartSamples, 1);
     // Starts: the ggx fit as the base under a coat of each roughness, and the ggx lobe taken

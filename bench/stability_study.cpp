@@ -82,7 +82,7 @@ std::string FitColumns(const FitResult& fit, const Model& truth, const Measureme
   const double m_true = truth.params()[models::LobedSlots::kExponent];
   const double m_fit = fit.model.params()[models::LobedSlots::kExponent];
   const double m_stderr = fit.stderr_values[models::LobedSlots::kExponent];
-  const fitters::PreparedSamples prepared = fitters::PrepareSamples(data, fitters::Loss::kL2);
+  const fitters::PreparedSamples prepared = fitters::PrepareSamples(data);
   const fitters::LobeResolution lobe =
       fitters::ResolveLobe(truth.Lobe().frame, m_true, prepared.samples);
   return Format("%.4g,%.4g,%.4g,%.6g,%.4g,%.4g,%d,%.5g,%zu,%s",

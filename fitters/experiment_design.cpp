@@ -237,7 +237,7 @@ template <typename M>
 PredictedErrors Predict(const Model& model, const Measurement& measurement,
                         const ExpectedNoise& noise) {
   DesignState<M> state(model);
-  const PreparedSamples prepared = PrepareSamples(measurement, Loss::kL2);
+  const PreparedSamples prepared = PrepareSamples(measurement);
   if (prepared.samples.size() != measurement.samples.size() || !measurement.has_sigma()) {
     throw UsageError("a predicted fit needs every geometry above the horizon, with its sigma");
   }

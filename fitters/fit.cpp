@@ -274,7 +274,7 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
   options.Validate();
   FindModel(model_name);  // an unknown name is a usage error before any work
   const auto start = std::chrono::steady_clock::now();
-  const PreparedSamples prepared = PrepareSamples(measurement, options.loss);
+  const PreparedSamples prepared = PrepareSamples(measurement);
   FitResult result = FitPreparedSamples(prepared, model_name, options);
   FinishFit(measurement, prepared, &result);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

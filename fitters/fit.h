@@ -109,7 +109,7 @@ struct SubsampleOptimum {
 FitResult FitModel(const Measurement& measurement, const std::string& model_name,
                    const FitOptions& options);
 
-// The fit alone, on PrepareSamples(measurement, options.loss): parameters, standard errors,
+// The fit alone, on PrepareSamples(measurement): parameters, standard errors,
 // metrics and BIC, without the energy check and the diagnostics. `optimum`, when given and
 // found, is where the polish starts (it must come from a fit of the same model and options
 // whose samples had the same Subsample); when given and not found, it receives this fit's.

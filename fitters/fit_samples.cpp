@@ -66,7 +66,7 @@ Loss ParseLoss(const std::string& name) { return ParseEnum(kLossNames, name, "lo
 
 const char* LossName(Loss loss) { return NameOf(kLossNames, loss); }
 
-PreparedSamples PrepareSamples(const Measurement& measurement, Loss /*loss*/) {
+PreparedSamples PrepareSamples(const Measurement& measurement) {
   PreparedSamples prepared;
   std::vector<size_t> source_index;
   const auto usable = [](const Sample& sample) {

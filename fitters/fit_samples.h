@@ -62,9 +62,9 @@ struct PreparedSamples {
 //  * scattered data: per incidence direction, the area of the detector directions closest to
 //    each sample, estimated from the distance to its k-th nearest neighbour (k = 4).
 // Weights are normalized to mean 1; the file's weight column multiplies them and its sigma
-// columns divide the residuals. The samples are the same for every loss (each loss transforms
-// the data where it compares them, LossTarget); the loss names the fit they are prepared for.
-PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss);
+// columns divide the residuals. The samples are the same for every loss: each loss transforms
+// the data where it compares them (LossTarget).
+PreparedSamples PrepareSamples(const Measurement& measurement);
 
 // A deterministic stratified subsample of at most `max_samples`: every sample in the top 1% by
 // luminance (the specular peak, which a uniform draw would miss) plus a seeded uniform draw of

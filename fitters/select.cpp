@@ -26,7 +26,7 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
                        Selection* selection, std::vector<FitResult>* all_fits) {
   options.Validate();
   const auto start = std::chrono::steady_clock::now();
-  const PreparedSamples prepared = PrepareSamples(measurement, options.loss);
+  const PreparedSamples prepared = PrepareSamples(measurement);
   // A large table: the candidates compete on the fit's own stratified subsample (BIC on a
   // subsample is still BIC, and every candidate sees the same samples), and only the winner is
   // polished on every sample. Small files, and callers that keep every fit, fit every candidate

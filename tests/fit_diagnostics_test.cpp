@@ -68,7 +68,7 @@ TEST(FitDiagnostics, LobeNarrowerThanTheSampleSpacingIsReported) {
   EXPECT_TRUE(HasWarning(fit, "lobe narrower than the sample spacing")) << AllWarnings(fit);
   // The truth's own lobe has no sample on its flank either.
   const fitters::PreparedSamples prepared =
-      fitters::PrepareSamples(SynthesizeOnHemisphere(truth, options), fitters::Loss::kL2);
+      fitters::PrepareSamples(SynthesizeOnHemisphere(truth, options));
   const fitters::LobeResolution lobe =
       fitters::ResolveLobe(LobeFrame::kMirror, 1e4, prepared.samples);
   EXPECT_EQ(lobe.flank_samples, 0u);

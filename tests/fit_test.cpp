@@ -238,8 +238,7 @@ TEST(Fit, ResidualGradientsMatchFiniteDifferences) {
   Noise noise;
   noise.relative = 0.05;
   const Measurement measurement = Synthesize(truth, noise);
-  const fitters::PreparedSamples prepared =
-      fitters::PrepareSamples(measurement, fitters::Loss::kLog);
+  const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement);
   using Residual = fitters::BatchResidual<models::BlinnPhong>;
   const int count = 8;
   ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3, 3, 1> cost(
@@ -270,7 +269,7 @@ void ExpectAnalyticJacobianMatches(const char* truth_text) {
   const Measurement measurement = Synthesize(ParseModel(truth_text), noise);
   for (const fitters::Loss loss :
        {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
-    const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement, loss);
+    const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement);
     for (const bool grey : {false, true}) {
       SCOPED_TRACE(std::string(M::kName) + " loss " + fitters::LossName(loss) +
                    (grey ? " grey" : " rgb"));
@@ -359,8 +358,7 @@ void ExpectMicrofacetResidualGradientsMatch(const char* truth_text) {
   const Model truth = ParseModel(truth_text);
   Noise noise;
   noise.relative = 0.05;
-  const fitters::PreparedSamples prepared =
-      fitters::PrepareSamples(Synthesize(truth, noise), fitters::Loss::kLog);
+  const fitters::PreparedSamples prepared = fitters::PrepareSamples(Synthesize(truth, noise));
   using Residual = fitters::BatchResidual<M>;
   const int count = 8;
   ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3, 3, 1> cost(

@@ -172,7 +172,7 @@ std::vector<Target> AllTargets() {
 
 ExportSamples SamplesForExport(const Measurement& measurement) {
   ExportSamples result;
-  result.samples = fitters::PrepareSamples(measurement, fitters::Loss::kL2).samples;
+  result.samples = fitters::PrepareSamples(measurement).samples;
   result.origin =
       "the fit's " + std::to_string(result.samples.size()) + " samples of " + measurement.source;
   return result;
