@@ -26,6 +26,7 @@
 #include <ceres/cost_function.h>
 #include <ceres/jet.h>
 
+#include <Eigen/Core>
 #include <cmath>
 
 #include "fitters/fit_samples.h"
@@ -62,18 +63,132 @@ class AnalyticBatchCost : public ceres::CostFunction {
       return residual_(parameters[0], parameters[1], parameters[2], residuals);
     }
     const int s_size = SpecularSize();
-    constexpr int kMaxVariables = FitVariables::kMaxVariables;
-    const int variables = 3 + s_size + 1;
+    const ChainRule chain = Chain(parameters);
+    VisitRows(chain, [&](int row, double residual, const double* dr_dparams) {
+      residuals[row] = residual;
+      const int c = row % 3;
+      double row_gradient[FitVariables::kMaxVariables];
+      for (int j = 0; j < chain.variables; ++j) {
+        row_gradient[j] = dr_dparams[0] * chain.g_rho_d[c][j] + dr_dparams[1] * chain.g_lobe[c][j] +
+                          dr_dparams[2] * chain.g_shape[j];
+      }
+      if (jacobians[0] != nullptr) {
+        for (int j = 0; j < 3; ++j) jacobians[0][3 * row + j] = row_gradient[j];
+      }
+      if (jacobians[1] != nullptr) {
+        for (int j = 0; j < s_size; ++j) jacobians[1][s_size * row + j] = row_gradient[3 + j];
+      }
+      if (jacobians[2] != nullptr) jacobians[2][row] = row_gradient[3 + s_size];
+    });
+    return true;
+  }
+
+  // The batch's terms of the normal equations at `parameters`, added to the lower triangles of
+  // a = J^T J and b = J^T diag(e) J (e the squared residual, or `expected_squared[row]` when
+  // given), to g = J^T r, and 1/2 |r|^2 to cost, without forming J. Each row is
+  // J_row = u^T G_c, u = d r / d (rho_d_c, lobe_c, shape), G_c the rows of d params / d
+  // variables for channel c (the same for the whole batch), so J^T J = sum_c G_c^T (sum u u^T)
+  // G_c: six products a row instead of one per pair of variables.
+  void AddNormalSums(double const* const* parameters, const double* expected_squared,
+                     Eigen::MatrixXd* a, Eigen::MatrixXd* b, Eigen::VectorXd* g,
+                     double* cost) const {
+    const ChainRule chain = Chain(parameters);
+    double moments[3][6] = {}, weighted[3][6] = {}, gradient[3][3] = {};
+    double residuals[3 * kMaxBatch];
+    const bool whole_batch = count_ <= kMaxBatch;
+    double half_squared = 0;
+    VisitRows(chain, [&](int row, double residual, const double* u) {
+      const int c = row % 3;
+      const double e = expected_squared != nullptr ? expected_squared[row] : residual * residual;
+      int slot = 0;
+      for (int p = 0; p < 3; ++p) {
+        for (int q = 0; q <= p; ++q, ++slot) {
+          const double product = u[p] * u[q];
+          moments[c][slot] += product;
+          weighted[c][slot] += e * product;
+        }
+        gradient[c][p] += residual * u[p];
+      }
+      if (whole_batch) {
+        residuals[row] = residual;
+      } else {
+        half_squared += 0.5 * residual * residual;
+      }
+    });
+    // The cost as SumOverBlocks adds it up from a batch's residuals (HalfSquaredSum).
+    *cost += whole_batch
+                 ? 0.5 * Eigen::Map<const Eigen::VectorXd>(residuals, 3 * count_).squaredNorm()
+                 : half_squared;
+    const int n = chain.variables;
+    for (int c = 0; c < 3; ++c) {
+      const double* rows[3] = {chain.g_rho_d[c], chain.g_lobe[c], chain.g_shape};
+      int slot = 0;
+      double m[3][3], w[3][3];
+      for (int p = 0; p < 3; ++p) {
+        for (int q = 0; q <= p; ++q, ++slot) {
+          m[p][q] = m[q][p] = moments[c][slot];
+          w[p][q] = w[q][p] = weighted[c][slot];
+        }
+      }
+      for (int i = 0; i < n; ++i) {
+        for (int p = 0; p < 3; ++p) (*g)[i] += rows[p][i] * gradient[c][p];
+        for (int j = 0; j <= i; ++j) {
+          double sum_a = 0, sum_b = 0;
+          for (int p = 0; p < 3; ++p) {
+            for (int q = 0; q < 3; ++q) {
+              const double gg = rows[p][i] * rows[q][j];
+              sum_a += gg * m[p][q];
+              sum_b += gg * w[p][q];
+            }
+          }
+          (*a)(i, j) += sum_a;
+          (*b)(i, j) += sum_b;
+        }
+      }
+    }
+  }
+
+ private:
+  int SpecularSize() const { return grey_specular_ ? 1 : 3; }
+
+  // Batches up to this size keep their residuals on the stack for the cost (AddNormalSums).
+  static constexpr int kMaxBatch = 1024;
+
+  // The batch's parameters and d params / d variables (ParamsAndGradients), the rows of the
+  // latter each channel's residuals depend on, and the lobe's normalization.
+  struct ChainRule {
     double params[ModelType::kNumParams];
-    double gradients[ModelType::kNumParams * kMaxVariables];
+    double gradients[ModelType::kNumParams * FitVariables::kMaxVariables];
+    int variables = 0;
+    const double* g_rho_d[3];
+    const double* g_lobe[3];
+    const double* g_shape;
+    Jet1 normalization{0.0};
+  };
+  ChainRule Chain(double const* const* parameters) const {
+    ChainRule chain;
+    chain.variables = 3 + SpecularSize() + 1;
     ParamsAndGradients<ModelType>(grey_specular_, parameters[0], parameters[1], parameters[2],
-                                  params, gradients);
-    const double shape = params[kShape];
+                                  chain.params, chain.gradients);
+    for (int c = 0; c < 3; ++c) {
+      chain.g_rho_d[c] = chain.gradients + (kRhoD + c) * chain.variables;
+      chain.g_lobe[c] = chain.gradients + (kLobeSlot + c) * chain.variables;
+    }
+    chain.g_shape = chain.gradients + kShape * chain.variables;
     // Power cosine: N(m) and N'(m); N as the Jets had it (a Jet divides by multiplying with
     // the inverse).
-    Jet1 normalization(0.0);
-    if constexpr (!kMicrofacet) normalization = ModelType::LobeNormalization(Jet1(shape, 0));
-    const double* const g_shape = gradients + kShape * variables;
+    if constexpr (!kMicrofacet) {
+      chain.normalization = ModelType::LobeNormalization(Jet1(chain.params[kShape], 0));
+    }
+    return chain;
+  }
+
+  // Calls visit(row, residual, u) for each residual row of the batch, with u = d residual /
+  // d (rho_d_c, lobe slot c, shape) for the row's channel c.
+  template <typename Visit>
+  void VisitRows(const ChainRule& chain, Visit&& visit) const {
+    const double* params = chain.params;
+    const double shape = params[kShape];
     for (int k = 0; k < count_; ++k) {
       const FitSample& sample = samples_[k];
       // f and its derivatives by the channel's lobe slot and by the shape; zero below the horizon.
@@ -94,9 +209,9 @@ class AnalyticBatchCost : public ceres::CostFunction {
       } else {
         const double cosine = ModelType::LobeCosine(sample.wi, sample.wo);
         const double power = models::ClampedPow(cosine, shape);
-        const double lobe = normalization.a * power;
+        const double lobe = chain.normalization.a * power;
         const double lobe_slope =
-            cosine > 0 ? normalization.v[0] * power + lobe * std::log(cosine) : 0.0;
+            cosine > 0 ? chain.normalization.v[0] * power + lobe * std::log(cosine) : 0.0;
         f = models::PowerCosineValue(params, lobe);
         df_dlobe.setConstant(lobe);
         for (int c = 0; c < 3; ++c) df_dshape[c] = params[kLobeSlot + c] * lobe_slope;
@@ -104,33 +219,15 @@ class AnalyticBatchCost : public ceres::CostFunction {
       const double cos_theta_i = sample.cos_theta_i();
       const Rgb target = LossTarget(loss_, sample.value, cos_theta_i);
       for (int c = 0; c < 3; ++c) {
-        const int row = 3 * k + c;
-        residuals[row] = (LossPrediction(loss_, f[c], cos_theta_i) - target[c]) * sample.scale[c];
+        const double residual =
+            (LossPrediction(loss_, f[c], cos_theta_i) - target[c]) * sample.scale[c];
         const double dr_df =
             above ? sample.scale[c] * LossPredictionDerivative(loss_, f[c], cos_theta_i) : 0.0;
-        const double dr_drho_d = dr_df * kInvPi;
-        const double dr_dlobe = dr_df * df_dlobe[c];
-        const double dr_dshape = dr_df * df_dshape[c];
-        const double* const g_rho_d = gradients + (kRhoD + c) * variables;
-        const double* const g_lobe = gradients + (kLobeSlot + c) * variables;
-        double row_gradient[kMaxVariables];
-        for (int j = 0; j < variables; ++j) {
-          row_gradient[j] = dr_drho_d * g_rho_d[j] + dr_dlobe * g_lobe[j] + dr_dshape * g_shape[j];
-        }
-        if (jacobians[0] != nullptr) {
-          for (int j = 0; j < 3; ++j) jacobians[0][3 * row + j] = row_gradient[j];
-        }
-        if (jacobians[1] != nullptr) {
-          for (int j = 0; j < s_size; ++j) jacobians[1][s_size * row + j] = row_gradient[3 + j];
-        }
-        if (jacobians[2] != nullptr) jacobians[2][row] = row_gradient[3 + s_size];
+        const double u[3] = {dr_df * kInvPi, dr_df * df_dlobe[c], dr_df * df_dshape[c]};
+        visit(3 * k + c, residual, u);
       }
     }
-    return true;
   }
-
- private:
-  int SpecularSize() const { return grey_specular_ ? 1 : 3; }
 
   BatchResidual<ModelType> residual_;  // the residuals alone, evaluated in doubles
   bool grey_specular_;

@@ -23,7 +23,9 @@
 #include <vector>
 
 #include "core/deterministic_reduce.h"
+#include "fitters/analytic_cost.h"
 #include "fitters/model_fitter.h"
+#include "fitters/parallel_cost.h"
 
 namespace brdf::fitters {
 
@@ -71,18 +73,19 @@ void ProblemBlocks(const ModelFitter<ModelType>& fitter, Variables* at,
 // A residual block's Jacobian: one row per residual, the parameter blocks side by side.
 using BlockJacobian = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// Evaluates one residual block at `blocks`: its residuals and, unless `jacobian` is null, its
-// Jacobian (rows x n). A block that fails to evaluate reads as infinite residuals.
+// Evaluates one cost function (a residual block, or one batch of it) at `blocks`: its residuals
+// and, unless `jacobian` is null, its Jacobian (rows x n). A function that fails to evaluate
+// reads as infinite residuals. `scratch` holds the parameter blocks' Jacobians between calls.
 inline void EvaluateBlock(const ceres::CostFunction* cost, const std::vector<double*>& blocks,
                           const std::vector<int>& sizes, int n, Eigen::VectorXd* residuals,
-                          BlockJacobian* jacobian) {
+                          BlockJacobian* jacobian, std::vector<std::vector<double>>* scratch) {
   const int rows = cost->num_residuals();
   residuals->resize(rows);
-  std::vector<std::vector<double>> jacobians(jacobian != nullptr ? blocks.size() : 0);
-  std::vector<double*> jacobian_pointers(jacobians.size());
-  for (size_t b = 0; b < jacobians.size(); ++b) {
-    jacobians[b].resize(static_cast<size_t>(rows) * sizes[b]);
-    jacobian_pointers[b] = jacobians[b].data();
+  scratch->resize(jacobian != nullptr ? blocks.size() : 0);
+  std::vector<double*> jacobian_pointers(scratch->size());
+  for (size_t b = 0; b < scratch->size(); ++b) {
+    (*scratch)[b].resize(static_cast<size_t>(rows) * sizes[b]);
+    jacobian_pointers[b] = (*scratch)[b].data();
   }
   if (!cost->Evaluate(blocks.data(), residuals->data(),
                       jacobian != nullptr ? jacobian_pointers.data() : nullptr)) {
@@ -93,7 +96,7 @@ inline void EvaluateBlock(const ceres::CostFunction* cost, const std::vector<dou
   int column = 0;
   for (size_t b = 0; b < blocks.size(); ++b) {
     jacobian->middleCols(column, sizes[b]) =
-        Eigen::Map<const BlockJacobian>(jacobians[b].data(), rows, sizes[b]);
+        Eigen::Map<const BlockJacobian>((*scratch)[b].data(), rows, sizes[b]);
     column += sizes[b];
   }
 }
@@ -104,7 +107,8 @@ void VisitBlockRows(const ceres::CostFunction* cost, const std::vector<double*>&
                     const std::vector<int>& sizes, int n, Visit&& visit) {
   Eigen::VectorXd residuals;
   BlockJacobian jacobian;
-  EvaluateBlock(cost, blocks, sizes, n, &residuals, &jacobian);
+  std::vector<std::vector<double>> scratch;
+  EvaluateBlock(cost, blocks, sizes, n, &residuals, &jacobian, &scratch);
   for (int r = 0; r < jacobian.rows(); ++r) {
     const Eigen::VectorXd row = jacobian.row(r).transpose();
     visit(r, row, residuals[r]);
@@ -175,40 +179,72 @@ inline bool SandwichCovariance(const Eigen::MatrixXd& full_a, const Eigen::Matri
   return true;
 }
 
-// Sums over the residual blocks of `problem` at `v`: add(partial, first_row, residuals,
-// jacobian) for each block (rows numbered in the problem's order: sample k's channel c is row
-// 3 k + c), in one parallel pass (each block evaluating its batches in parallel), the blocks'
-// partial sums combined in a fixed order, so the result does not depend on the thread count.
-// Summing a block at a time lets J^T J be one matrix product instead of a rank update a row.
-// Without `with_jacobian` only the residuals are evaluated and `add` gets an empty Jacobian.
-template <typename ModelType, typename Sums, typename Add, typename Combine>
-Sums SumOverBlocks(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
-                   const Variables& v, const Sums& zero, Add&& add, Combine&& combine,
-                   bool with_jacobian = true) {
+// Cost functions per chunk of ReduceOverBatches: 16 batches of 256 samples, a chunk's Jacobians
+// stay in the core's cache.
+inline constexpr int64_t kBatchesPerChunk = 16;
+
+// Reduces over the batches of every residual block of `problem` (ParallelBatchCost; a block of
+// another kind as a whole): visit(partial, cost, first_row, blocks, sizes) for each, with
+// `blocks` the parameter blocks at `v` and rows numbered in the problem's order (sample k's
+// channel c is row 3 k + c). One parallel pass, the partial results combined in a fixed order,
+// so the result does not depend on the thread count. A batch's Jacobian is a few tens of kB and
+// stays in cache; a whole block's would be tens of MB, allocated and touched anew.
+template <typename ModelType, typename Value, typename Visit, typename Combine>
+Value ReduceOverBatches(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                        const Variables& v, const Value& zero, Visit&& visit, Combine&& combine) {
   Variables at = v;
   std::vector<double*> blocks;
   std::vector<int> sizes;
   ProblemBlocks(fitter, &at, &blocks, &sizes);
-  const int n = fitter.FreeVariables();
+  struct Batch {
+    const ceres::CostFunction* cost;
+    int64_t first_row;
+  };
+  std::vector<Batch> batches;
   std::vector<ceres::ResidualBlockId> residual_blocks;
   problem->GetResidualBlocks(&residual_blocks);
-  std::vector<int64_t> first_row(residual_blocks.size() + 1, 0);
-  for (size_t k = 0; k < residual_blocks.size(); ++k) {
-    first_row[k + 1] =
-        first_row[k] +
-        problem->GetCostFunctionForResidualBlock(residual_blocks[k])->num_residuals();
+  int64_t block_row = 0;
+  for (const ceres::ResidualBlockId id : residual_blocks) {
+    const ceres::CostFunction* cost = problem->GetCostFunctionForResidualBlock(id);
+    if (const auto* batched = dynamic_cast<const ParallelBatchCost*>(cost)) {
+      for (size_t b = 0; b < batched->batch_count(); ++b) {
+        batches.push_back({&batched->batch(b), block_row + batched->first_row(b)});
+      }
+    } else {
+      batches.push_back({cost, block_row});
+    }
+    block_row += cost->num_residuals();
   }
   return DeterministicReduce(
-      static_cast<int64_t>(residual_blocks.size()), 1, zero,
-      [&](int64_t begin, int64_t end, Sums partial) {
-        Eigen::VectorXd residuals;
-        BlockJacobian jacobian;
+      static_cast<int64_t>(batches.size()), kBatchesPerChunk, zero,
+      [&](int64_t begin, int64_t end, Value partial) {
         for (int64_t index = begin; index < end; ++index) {
-          EvaluateBlock(problem->GetCostFunctionForResidualBlock(residual_blocks[index]), blocks,
-                        sizes, n, &residuals, with_jacobian ? &jacobian : nullptr);
-          add(partial, first_row[index], residuals, jacobian);
+          visit(partial, *batches[index].cost, batches[index].first_row, blocks, sizes);
         }
         return partial;
+      },
+      combine);
+}
+
+// Sums over the residuals of `problem` at `v` (ReduceOverBatches): add(partial, first_row,
+// residuals, jacobian) for each batch. Without `with_jacobian` only the residuals are evaluated
+// and `add` gets an empty Jacobian.
+template <typename ModelType, typename Sums, typename Add, typename Combine>
+Sums SumOverBlocks(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                   const Variables& v, const Sums& zero, Add&& add, Combine&& combine,
+                   bool with_jacobian = true) {
+  const int n = fitter.FreeVariables();
+  return ReduceOverBatches(
+      fitter, problem, v, zero,
+      [&](Sums& partial, const ceres::CostFunction& cost, int64_t first_row,
+          const std::vector<double*>& blocks, const std::vector<int>& sizes) {
+        // Per visit: a chunk's few batches reuse the allocator's recent blocks.
+        Eigen::VectorXd residuals;
+        BlockJacobian jacobian;
+        std::vector<std::vector<double>> scratch;
+        EvaluateBlock(&cost, blocks, sizes, n, &residuals, with_jacobian ? &jacobian : nullptr,
+                      &scratch);
+        add(partial, first_row, residuals, jacobian);
       },
       combine);
 }
@@ -222,36 +258,88 @@ struct SandwichSums {
 // (one e_i >= 0 per row: a squared residual or the expectation of one).
 inline void AddSandwichSums(const BlockJacobian& jacobian, const Eigen::VectorXd& e,
                             Eigen::MatrixXd* a, Eigen::MatrixXd* b) {
-  const BlockJacobian weighted = e.cwiseSqrt().asDiagonal() * jacobian;  // sqrt(e) J
-  a->selfadjointView<Eigen::Lower>().rankUpdate(jacobian.transpose());
-  b->selfadjointView<Eigen::Lower>().rankUpdate(weighted.transpose());
+  // A batch has a few hundred rows of at most seven columns: a loop over the rows into the
+  // lower triangles beats a matrix product, whose packing dominates at this size.
+  const int n = static_cast<int>(jacobian.cols());
+  double sum_a[FitVariables::kMaxVariables][FitVariables::kMaxVariables] = {};
+  double sum_b[FitVariables::kMaxVariables][FitVariables::kMaxVariables] = {};
+  for (Eigen::Index row = 0; row < jacobian.rows(); ++row) {
+    const double* j = jacobian.row(row).data();
+    const double weight = e[row];
+    for (int p = 0; p < n; ++p) {
+      for (int q = 0; q <= p; ++q) {
+        const double product = j[p] * j[q];
+        sum_a[p][q] += product;
+        sum_b[p][q] += weight * product;
+      }
+    }
+  }
+  for (int p = 0; p < n; ++p) {
+    for (int q = 0; q <= p; ++q) {
+      (*a)(p, q) += sum_a[p][q];
+      (*b)(p, q) += sum_b[p][q];
+    }
+  }
 }
 
-// A = sum J_i^T J_i and B = sum J_i^T J_i e_i over the residual rows i, with e_i the squared
+// The sums of the normal equations over the residual rows i of `problem` at `v`:
+// A = sum J_i^T J_i, B = sum J_i^T J_i e_i, g = J^T r and cost = 1/2 |r|^2, with e_i the squared
 // residual itself or, when `expected_squared` is given, its expectation (one per row, in the
-// problem's order): then A^-1 B A^-1 is the covariance a fit of these samples will have, before
-// any data exist (experiment_design.h).
+// problem's order). A and B are lower triangles. An analytic batch (analytic_cost.h) adds its
+// terms without forming its Jacobian; any other batch through its Jacobian rows.
+struct NormalSums {
+  Eigen::MatrixXd a, b;
+  Eigen::VectorXd g;
+  double cost = 0;
+};
+template <typename ModelType>
+NormalSums NormalEquationSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                              const Variables& v, const std::vector<double>* expected_squared) {
+  const int n = fitter.FreeVariables();
+  const NormalSums zero{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n),
+                        Eigen::VectorXd::Zero(n), 0.0};
+  return ReduceOverBatches(
+      fitter, problem, v, zero,
+      [&](NormalSums& partial, const ceres::CostFunction& cost, int64_t first_row,
+          const std::vector<double*>& blocks, const std::vector<int>& sizes) {
+        const double* expected =
+            expected_squared != nullptr ? expected_squared->data() + first_row : nullptr;
+        if constexpr (kHasLobe<ModelType>) {
+          if (const auto* analytic = dynamic_cast<const AnalyticBatchCost<ModelType>*>(&cost)) {
+            analytic->AddNormalSums(blocks.data(), expected, &partial.a, &partial.b, &partial.g,
+                                    &partial.cost);
+            return;
+          }
+        }
+        Eigen::VectorXd residuals;
+        BlockJacobian jacobian;
+        std::vector<std::vector<double>> scratch;
+        EvaluateBlock(&cost, blocks, sizes, n, &residuals, &jacobian, &scratch);
+        const Eigen::VectorXd e =
+            expected != nullptr
+                ? Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(expected, residuals.size()))
+                : Eigen::VectorXd(residuals.array().square());
+        AddSandwichSums(jacobian, e, &partial.a, &partial.b);
+        partial.g.noalias() += jacobian.transpose() * residuals;
+        partial.cost += 0.5 * residuals.squaredNorm();
+      },
+      [](NormalSums x, const NormalSums& y) {
+        x.a += y.a;
+        x.b += y.b;
+        x.g += y.g;
+        x.cost += y.cost;
+        return x;
+      });
+}
+
+// A = sum J_i^T J_i and B = sum J_i^T J_i e_i over the residual rows i (NormalEquationSums): then
+// A^-1 B A^-1 is the covariance a fit of these samples will have, before any data exist, when
+// `expected_squared` is given (experiment_design.h).
 template <typename ModelType>
 void JacobianSums(const ModelFitter<ModelType>& fitter, ceres::Problem* problem, const Variables& v,
                   const std::vector<double>* expected_squared, Eigen::MatrixXd* a,
                   Eigen::MatrixXd* b) {
-  const int n = fitter.FreeVariables();
-  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(n, n);
-  const SandwichSums sums = SumOverBlocks(
-      fitter, problem, v, SandwichSums{zero, zero},
-      [&](SandwichSums& partial, int64_t first_row, const Eigen::VectorXd& residuals,
-          const BlockJacobian& jacobian) {
-        const Eigen::VectorXd e = expected_squared != nullptr
-                                      ? Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(
-                                            expected_squared->data() + first_row, residuals.size()))
-                                      : Eigen::VectorXd(residuals.array().square());
-        AddSandwichSums(jacobian, e, &partial.a, &partial.b);
-      },
-      [](SandwichSums x, const SandwichSums& y) {
-        x.a += y.a;
-        x.b += y.b;
-        return x;
-      });
+  const NormalSums sums = NormalEquationSums(fitter, problem, v, expected_squared);
   *a = sums.a.template selfadjointView<Eigen::Lower>();
   *b = sums.b.template selfadjointView<Eigen::Lower>();
 }

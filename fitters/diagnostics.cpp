@@ -1,12 +1,14 @@
 #include "fitters/diagnostics.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <vector>
 
 #include "core/angles.h"
@@ -68,20 +70,43 @@ constexpr double kMaxReducedChiSquare = 4.0;
 // Marks a channel without a residual score (scores are absolute values: never negative).
 constexpr double kNoScore = -1.0;
 
+// Scores per chunk of the radix histograms.
+constexpr size_t kHistogramGrain = size_t{1} << 18;
+
+// Histogram of bits [shift, shift + 16) of the scores that are not kNoScore and whose bits under
+// `mask` equal `prefix`; chunks in parallel, their counts added (integers: any order gives the
+// same histogram).
+std::vector<size_t> ScoreHistogram(const std::vector<double>& scores, int shift, uint64_t mask,
+                                   uint64_t prefix) {
+  using Histogram = std::vector<size_t>;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, scores.size(), kHistogramGrain), Histogram(),
+      [&](const tbb::blocked_range<size_t>& range, Histogram histogram) {
+        if (histogram.empty()) histogram.assign(size_t{1} << 16, 0);
+        for (size_t k = range.begin(); k < range.end(); ++k) {
+          const double score = scores[k];
+          if (std::signbit(score)) continue;
+          uint64_t bits;
+          std::memcpy(&bits, &score, sizeof bits);
+          if ((bits & mask) == prefix) ++histogram[(bits >> shift) & 0xFFFF];
+        }
+        return histogram;
+      },
+      [](Histogram a, const Histogram& b) {
+        if (a.empty()) return b;
+        for (size_t bucket = 0; bucket < b.size(); ++bucket) a[bucket] += b[bucket];
+        return a;
+      });
+}
+
 // The k-th smallest (from 0) of the scores that are not kNoScore, exactly, without reordering or
 // copying them: a radix selection, 16 bits at a time from the top, on the IEEE bit patterns,
-// which order non-negative doubles as their values.
-double KthSmallestScore(const std::vector<double>& scores, size_t k) {
+// which order non-negative doubles as their values. `top` is the histogram of the top 16 bits.
+double KthSmallestScore(const std::vector<double>& scores, size_t k, std::vector<size_t> top) {
   uint64_t prefix = 0, mask = 0;
-  std::vector<size_t> histogram(size_t{1} << 16);
+  std::vector<size_t> histogram = std::move(top);
   for (int shift = 48; shift >= 0; shift -= 16) {
-    std::fill(histogram.begin(), histogram.end(), 0);
-    for (double score : scores) {
-      if (std::signbit(score)) continue;
-      uint64_t bits;
-      std::memcpy(&bits, &score, sizeof bits);
-      if ((bits & mask) == prefix) ++histogram[(bits >> shift) & 0xFFFF];
-    }
+    if (shift != 48) histogram = ScoreHistogram(scores, shift, mask, prefix);
     uint64_t bucket = 0;
     while (k >= histogram[bucket]) k -= histogram[bucket++];
     prefix |= bucket << shift;
@@ -252,6 +277,9 @@ LobeResolution ResolveLobe(LobeFrame frame, double exponent,
   lobe.half_width_deg = std::acos(std::exp(-0.5 / exponent)) * kRadToDeg;
   lobe.nearest_off_peak_deg = std::numeric_limits<double>::infinity();
   if (frame == LobeFrame::kNormal) return lobe;
+  // The offset acos(exp(-x / e)) grows with x: the nearest sample off the peak is the one of
+  // least x, so one offset is taken, not one a sample.
+  double nearest_x = std::numeric_limits<double>::infinity();
   for (const FitSample& sample : samples) {
     const double x = LobeExponentTerm(frame, exponent, sample.wi, sample.wo);
     if (x < kFlankStart) {
@@ -259,10 +287,10 @@ LobeResolution ResolveLobe(LobeFrame frame, double exponent,
       continue;
     }
     if (x <= kFlankEnd) ++lobe.flank_samples;
-    if (std::isfinite(x)) {
-      const double offset_deg = std::acos(std::exp(-x / exponent)) * kRadToDeg;
-      lobe.nearest_off_peak_deg = std::min(lobe.nearest_off_peak_deg, offset_deg);
-    }
+    nearest_x = std::min(nearest_x, x);
+  }
+  if (std::isfinite(nearest_x)) {
+    lobe.nearest_off_peak_deg = std::acos(std::exp(-nearest_x / exponent)) * kRadToDeg;
   }
   return lobe;
 }
@@ -270,19 +298,16 @@ LobeResolution ResolveLobe(LobeFrame frame, double exponent,
 ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement) {
   ResidualCheck check;
   check.has_sigma = measurement.has_sigma();
+  // One pass over the file's samples: the largest value (for the rounding floor) and the usable
+  // samples' indices.
   double largest = 0;
-  for (const Sample& sample : measurement.samples) {
+  std::vector<size_t> usable_samples;  // file indices
+  usable_samples.reserve(measurement.samples.size());
+  for (size_t k = 0; k < measurement.samples.size(); ++k) {
+    const Sample& sample = measurement.samples[k];
     if (sample.missing || !sample.value.allFinite()) continue;
     largest = std::max(largest, sample.value.abs().maxCoeff());
-  }
-  const auto is_usable = [](const Sample& sample) {
-    return !sample.missing && sample.value.allFinite() && sample.wi.z() > 0 && sample.wo.z() > 0;
-  };
-  std::vector<size_t> usable_samples;  // file indices
-  usable_samples.reserve(static_cast<size_t>(
-      std::count_if(measurement.samples.begin(), measurement.samples.end(), is_usable)));
-  for (size_t k = 0; k < measurement.samples.size(); ++k) {
-    if (is_usable(measurement.samples[k])) usable_samples.push_back(k);
+    if (sample.wi.z() > 0 && sample.wo.z() > 0) usable_samples.push_back(k);
   }
   // |z| of each channel of each usable sample, in file order; kNoScore where a channel has none.
   std::vector<double> scores(3 * usable_samples.size(), kNoScore);
@@ -307,10 +332,10 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
       scores[3 * u + c] = std::abs(score);
     }
   });
-  check.residuals = static_cast<size_t>(
-      std::count_if(scores.begin(), scores.end(), [](double z) { return !std::signbit(z); }));
+  std::vector<size_t> top = ScoreHistogram(scores, 48, 0, 0);
+  check.residuals = std::accumulate(top.begin(), top.end(), size_t{0});
   if (check.residuals == 0) return check;
-  check.robust_scale = 1.4826 * KthSmallestScore(scores, check.residuals / 2);
+  check.robust_scale = 1.4826 * KthSmallestScore(scores, check.residuals / 2, std::move(top));
   // The chi-square is taken over the inliers, so that a few outliers (reported on their own)
   // do not pass for a misfit of the whole model. Runs in file order (the order an instrument
   // sweeps its detector): isolated outliers neighbour each other by chance, a misfit region in

@@ -5,6 +5,8 @@
 // has to find its basin, not its optimum); the lowest cost wins.
 #pragma once
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -22,17 +24,27 @@ template <typename ModelType>
 Variables BestStart(const ModelFitter<ModelType>& fitter, const std::vector<FitSample>& samples,
                     bool designed, int* iterations) {
   const FitOptions& options = fitter.options();
-  Variables best;
-  double best_cost = std::numeric_limits<double>::infinity();
-  for (const FitStart& start : fitter.Starts(designed)) {
-    Variables trial = fitter.InitialGuess(samples, start);
-    auto problem = fitter.BuildProblem(samples, &trial);
+  const std::vector<FitStart> starts = fitter.Starts(designed);
+  // The starts are independent: solved side by side (each on Ceres' one thread, its batches in
+  // parallel), then compared in their order, so the choice does not depend on the thread count.
+  std::vector<Variables> trials(starts.size());
+  std::vector<double> costs(starts.size());
+  std::vector<int> start_iterations(starts.size());
+  tbb::parallel_for(size_t{0}, starts.size(), [&](size_t k) {
+    trials[k] = fitter.InitialGuess(samples, starts[k]);
+    auto problem = fitter.BuildProblem(samples, &trials[k]);
     const ceres::Solver::Summary summary =
         fitter.Solve(problem.get(), std::min(options.start_iterations, options.max_iterations));
-    *iterations += static_cast<int>(summary.iterations.size());
-    if (std::isfinite(summary.final_cost) && summary.final_cost < best_cost) {
-      best_cost = summary.final_cost;
-      best = trial;
+    start_iterations[k] = static_cast<int>(summary.iterations.size());
+    costs[k] = summary.final_cost;
+  });
+  Variables best;
+  double best_cost = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < starts.size(); ++k) {
+    *iterations += start_iterations[k];
+    if (std::isfinite(costs[k]) && costs[k] < best_cost) {
+      best_cost = costs[k];
+      best = trials[k];
     }
   }
   if (!std::isfinite(best_cost)) throw ComputeError("every start of the fit failed");

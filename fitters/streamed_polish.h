@@ -88,35 +88,11 @@ double HalfSquaredSum(const ModelFitter<ModelType>& fitter, ceres::Problem* prob
       [](double a, double b) { return a + b; }, /*with_jacobian=*/false);
 }
 
-struct Normal {
-  Eigen::MatrixXd a;  // J^T J
-  Eigen::VectorXd g;  // J^T r, the gradient of the cost
-  double cost = 0;
-  Eigen::MatrixXd b;  // J^T diag(r^2) J, the sandwich's other sum, for the covariance
-};
-
+// The normal equations at `v`, their triangles filled in.
 template <typename ModelType>
-Normal Linearize(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
-                 const Variables& v) {
-  const int n = fitter.FreeVariables();
-  Normal zero{Eigen::MatrixXd::Zero(n, n), Eigen::VectorXd::Zero(n), 0.0,
-              Eigen::MatrixXd::Zero(n, n)};
-  Normal sums = SumOverBlocks(
-      fitter, problem, v, zero,
-      [](Normal& partial, int64_t, const Eigen::VectorXd& residuals,
-         const BlockJacobian& jacobian) {
-        AddSandwichSums(jacobian, Eigen::VectorXd(residuals.array().square()), &partial.a,
-                        &partial.b);
-        partial.g.noalias() += jacobian.transpose() * residuals;
-        partial.cost += 0.5 * residuals.squaredNorm();
-      },
-      [](Normal x, const Normal& y) {
-        x.a += y.a;
-        x.g += y.g;
-        x.cost += y.cost;
-        x.b += y.b;
-        return x;
-      });
+NormalSums Linearize(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                     const Variables& v) {
+  NormalSums sums = NormalEquationSums(fitter, problem, v, nullptr);
   sums.a = sums.a.selfadjointView<Eigen::Lower>();
   sums.b = sums.b.selfadjointView<Eigen::Lower>();
   return sums;
@@ -134,7 +110,7 @@ PolishSummary StreamedPolish(const ModelFitter<ModelType>& fitter, ceres::Proble
   const Eigen::Map<const Eigen::VectorXd> lower(bounds.lower.data(), n);
   const Eigen::Map<const Eigen::VectorXd> upper(bounds.upper.data(), n);
   Eigen::VectorXd x = Flatten(fitter, *v);
-  Normal current = Linearize(fitter, problem, *v);
+  NormalSums current = Linearize(fitter, problem, *v);
   bool linearized_at_x = true;
   PolishSummary summary;
   summary.initial_cost = current.cost;

@@ -350,6 +350,80 @@ TEST(Fit, AnalyticJacobianMatchesAutomaticAndFiniteDifferences) {
   ExpectAnalyticJacobianMatches<models::Beckmann>(kTruths[5]);
 }
 
+// The normal equations an analytic batch sums without its Jacobian (AddNormalSums: six moments a
+// row, mapped through d params / d variables once) are the sums over the Jacobian's own rows:
+// J^T J, J^T diag(e) J for e the squared residual and for given expectations, J^T r, |r|^2 / 2.
+template <typename M>
+void ExpectNormalSumsMatchJacobianRows(const char* truth_text) {
+  Noise noise;
+  noise.relative = 0.05;
+  const fitters::PreparedSamples prepared =
+      fitters::PrepareSamples(Synthesize(ParseModel(truth_text), noise));
+  for (const fitters::Loss loss :
+       {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+    for (const bool grey : {false, true}) {
+      SCOPED_TRACE(std::string(M::kName) + " loss " + fitters::LossName(loss) +
+                   (grey ? " grey" : " rgb"));
+      const int count = 200;
+      const int s_size = grey ? 1 : 3;
+      const int n = 3 + s_size + 1;
+      const fitters::AnalyticBatchCost<M> analytic(grey, loss, prepared.samples.data() + 30, count);
+      double d[3] = {0.3, -0.2, 0.1}, s[3] = {-1.0, -0.5, 0.2}, log_shape[1] = {std::log(0.3)};
+      if (M::kFamily != models::ModelFamily::kMicrofacet) log_shape[0] = std::log(40.0);
+      const double* blocks[] = {d, s, log_shape};
+      const int rows = 3 * count;
+      const int sizes[] = {3, s_size, 1};
+      std::vector<double> residuals(rows);
+      std::vector<std::vector<double>> jacobian(3);
+      double* jacobian_blocks[3];
+      for (int b = 0; b < 3; ++b) {
+        jacobian[b].assign(rows * sizes[b], 0.0);
+        jacobian_blocks[b] = jacobian[b].data();
+      }
+      ASSERT_TRUE(analytic.Evaluate(blocks, residuals.data(), jacobian_blocks));
+      std::vector<double> expectation(rows);
+      for (int row = 0; row < rows; ++row) expectation[row] = 0.01 * (1 + row % 7);
+      for (const bool given : {false, true}) {
+        Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n), b = a, a_rows = a, b_rows = a;
+        Eigen::VectorXd g = Eigen::VectorXd::Zero(n), g_rows = g;
+        double cost = 0, cost_rows = 0;
+        analytic.AddNormalSums(blocks, given ? expectation.data() : nullptr, &a, &b, &g, &cost);
+        for (int row = 0; row < rows; ++row) {
+          Eigen::VectorXd j(n);
+          int column = 0;
+          for (int block = 0; block < 3; ++block) {
+            for (int k = 0; k < sizes[block]; ++k) {
+              j[column++] = jacobian[block][row * sizes[block] + k];
+            }
+          }
+          const double e = given ? expectation[row] : residuals[row] * residuals[row];
+          a_rows += j * j.transpose();
+          b_rows += e * j * j.transpose();
+          g_rows += residuals[row] * j;
+          cost_rows += 0.5 * residuals[row] * residuals[row];
+        }
+        ASSERT_GT(a_rows.norm(), 0.0);
+        for (int i = 0; i < n; ++i) {
+          for (int k = 0; k <= i; ++k) {  // AddNormalSums fills the lower triangles
+            EXPECT_NEAR(a(i, k), a_rows(i, k), 1e-12 * a_rows.cwiseAbs().maxCoeff());
+            EXPECT_NEAR(b(i, k), b_rows(i, k), 1e-12 * b_rows.cwiseAbs().maxCoeff());
+          }
+          EXPECT_NEAR(g[i], g_rows[i], 1e-12 * g_rows.cwiseAbs().maxCoeff());
+        }
+        EXPECT_NEAR(cost, cost_rows, 1e-13 * cost_rows);
+      }
+    }
+  }
+}
+
+TEST(Fit, NormalSumsWithoutTheJacobianMatchTheJacobianRows) {
+  ExpectNormalSumsMatchJacobianRows<models::Phong>(kTruths[1]);
+  ExpectNormalSumsMatchJacobianRows<models::BlinnPhong>(kTruths[2]);
+  ExpectNormalSumsMatchJacobianRows<models::BlinnPhongExact>(kTruths[3]);
+  ExpectNormalSumsMatchJacobianRows<models::Ggx>(kTruths[4]);
+  ExpectNormalSumsMatchJacobianRows<models::Beckmann>(kTruths[5]);
+}
+
 // The same for the microfacet models, whose parameterization runs through the tabulated
 // energy bound (Catmull-Rom in ln alpha, a maximum over incidence nodes): its Jet derivative
 // is the chosen node's, which finite differences see too away from a switch of node.
