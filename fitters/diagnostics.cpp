@@ -13,6 +13,7 @@
 
 #include "core/angles.h"
 #include "core/format.h"
+#include "core/huge_pages.h"
 #include "fitters/parameterization.h"
 
 namespace brdf::fitters {
@@ -70,6 +71,8 @@ constexpr double kMaxReducedChiSquare = 4.0;
 // Marks a channel without a residual score (scores are absolute values: never negative).
 constexpr double kNoScore = -1.0;
 
+// File samples per chunk of the residual check's parallel passes.
+constexpr size_t kSamplesPerChunk = size_t{1} << 14;
 // Scores per chunk of the radix histograms.
 constexpr size_t kHistogramGrain = size_t{1} << 18;
 
@@ -298,38 +301,63 @@ LobeResolution ResolveLobe(LobeFrame frame, double exponent,
 ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement) {
   ResidualCheck check;
   check.has_sigma = measurement.has_sigma();
-  // One pass over the file's samples: the largest value (for the rounding floor) and the usable
-  // samples' indices.
-  double largest = 0;
-  std::vector<size_t> usable_samples;  // file indices
-  usable_samples.reserve(measurement.samples.size());
-  for (size_t k = 0; k < measurement.samples.size(); ++k) {
-    const Sample& sample = measurement.samples[k];
-    if (sample.missing || !sample.value.allFinite()) continue;
-    largest = std::max(largest, sample.value.abs().maxCoeff());
-    if (sample.wi.z() > 0 && sample.wo.z() > 0) usable_samples.push_back(k);
-  }
+  const std::vector<Sample>& samples = measurement.samples;
+  const auto is_present = [](const Sample& sample) {
+    return !sample.missing && sample.value.allFinite();
+  };
+  const auto is_usable = [&](const Sample& sample) {
+    return is_present(sample) && sample.wi.z() > 0 && sample.wo.z() > 0;
+  };
+  // Chunks of the file's samples, in parallel: the largest value (for the rounding floor) and
+  // each chunk's count of usable samples, whose running sum places its scores in file order.
+  const size_t chunks = (samples.size() + kSamplesPerChunk - 1) / kSamplesPerChunk;
+  std::vector<size_t> first_usable(chunks + 1, 0);
+  const double largest = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, chunks), 0.0,
+      [&](const tbb::blocked_range<size_t>& range, double partial) {
+        for (size_t chunk = range.begin(); chunk < range.end(); ++chunk) {
+          const size_t end = std::min(samples.size(), (chunk + 1) * kSamplesPerChunk);
+          size_t usable = 0;
+          for (size_t k = chunk * kSamplesPerChunk; k < end; ++k) {
+            if (!is_present(samples[k])) continue;
+            partial = std::max(partial, samples[k].value.abs().maxCoeff());
+            usable += is_usable(samples[k]);
+          }
+          first_usable[chunk + 1] = usable;
+        }
+        return partial;
+      },
+      [](double a, double b) { return std::max(a, b); });
+  std::partial_sum(first_usable.begin(), first_usable.end(), first_usable.begin());
+  const size_t usable = first_usable[chunks];
   // |z| of each channel of each usable sample, in file order; kNoScore where a channel has none.
-  std::vector<double> scores(3 * usable_samples.size(), kNoScore);
-  tbb::parallel_for(size_t{0}, usable_samples.size(), [&](size_t u) {
-    const size_t k = usable_samples[u];
-    const Sample& sample = measurement.samples[k];
-    const Rgb f = model.Eval(sample.wi, sample.wo);
-    for (int c = 0; c < 3; ++c) {
-      double difference = sample.value[c] - f[c];
-      if (std::abs(difference) <= kRoundingFloor * largest) difference = 0;
-      double score;
-      if (check.has_sigma) {
-        const double sigma = measurement.sigma[k][c];
-        if (!(sigma > 0) || !std::isfinite(sigma)) continue;
-        score = difference / sigma;
-      } else {
-        // Without sigma, relative residuals: the noise of an instrument that counts photons
-        // grows with the signal, so relative errors are comparable from floor to peak.
-        if (!(f[c] > 0)) continue;
-        score = difference / f[c];
+  std::vector<double> scores;
+  ReserveHugePages(&scores, 3 * usable);
+  scores.assign(3 * usable, kNoScore);
+  tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
+    const size_t end = std::min(samples.size(), (chunk + 1) * kSamplesPerChunk);
+    size_t u = first_usable[chunk];
+    for (size_t k = chunk * kSamplesPerChunk; k < end; ++k) {
+      const Sample& sample = samples[k];
+      if (!is_usable(sample)) continue;
+      const Rgb f = model.Eval(sample.wi, sample.wo);
+      for (int c = 0; c < 3; ++c) {
+        double difference = sample.value[c] - f[c];
+        if (std::abs(difference) <= kRoundingFloor * largest) difference = 0;
+        double score;
+        if (check.has_sigma) {
+          const double sigma = measurement.sigma[k][c];
+          if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+          score = difference / sigma;
+        } else {
+          // Without sigma, relative residuals: the noise of an instrument that counts photons
+          // grows with the signal, so relative errors are comparable from floor to peak.
+          if (!(f[c] > 0)) continue;
+          score = difference / f[c];
+        }
+        scores[3 * u + c] = std::abs(score);
       }
-      scores[3 * u + c] = std::abs(score);
+      ++u;
     }
   });
   std::vector<size_t> top = ScoreHistogram(scores, 48, 0, 0);
@@ -342,7 +370,6 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
   // runs.
   double chi_square = 0;
   size_t inliers = 0, pairs = 0;
-  const size_t usable = usable_samples.size();
   bool previous_flagged = false;
   for (size_t u = 0; u < usable; ++u) {
     bool flagged = false;

@@ -13,6 +13,7 @@
 #include "core/colour.h"
 #include "core/enum_names.h"
 #include "core/errors.h"
+#include "core/huge_pages.h"
 #include "io/merl.h"
 
 namespace brdf::fitters {
@@ -77,7 +78,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   // new copy at once and clear pages for both.
   const size_t count = static_cast<size_t>(
       std::count_if(measurement.samples.begin(), measurement.samples.end(), usable));
-  prepared.samples.reserve(count);
+  ReserveHugePages(&prepared.samples, count);
   const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
   if (per_sample_columns) source_index.reserve(count);
   for (size_t k = 0; k < measurement.samples.size(); ++k) {
