@@ -18,6 +18,7 @@
 #include "fitters/covariance.h"
 #include "fitters/diagnostics.h"
 #include "fitters/energy_check.h"
+#include "fitters/gram_solve.h"
 #include "fitters/model_fitter.h"
 #include "fitters/multi_start.h"
 #include "fitters/streamed_polish.h"
@@ -89,15 +90,13 @@ SubsampleOptimum FitSubsample(const ModelFitter<ModelType>& fitter,
 
   // 2. Refine the best start on the subsample. A robust loss re-estimates its scale from
   // each round's residuals: the first estimate is inflated by the bias the outliers caused.
-  auto problem = fitter.BuildProblem(subset, &best);
-  optimum.iterations +=
-      static_cast<int>(fitter.Solve(problem.get(), options.max_iterations).iterations.size());
+  optimum.iterations += static_cast<int>(
+      SolveLeastSquares(fitter, subset, &best, options.max_iterations).iterations.size());
   for (int round = 0; options.robust != Robust::kNone && round < kRobustRounds; ++round) {
     double scale = 0;  // estimated afresh
     const std::vector<FitSample> weighted = fitter.Reweight(subset, best, &scale);
-    auto robust_problem = fitter.BuildProblem(weighted, &best);
     optimum.iterations += static_cast<int>(
-        fitter.Solve(robust_problem.get(), options.max_iterations).iterations.size());
+        SolveLeastSquares(fitter, weighted, &best, options.max_iterations).iterations.size());
   }
   return optimum;
 }
@@ -131,13 +130,14 @@ FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared, const F
   const std::vector<FitSample>& polish_samples =
       options.robust == Robust::kNone ? all : final_samples;
   // On a subsampled (large) table the polish sums the normal equations instead of storing the
-  // Jacobian (streamed_polish.h); small sets keep Ceres' own solve.
+  // Jacobian (streamed_polish.h); small sets Ceres' solver (through GramCost, gram_solve.h).
   auto problem = fitter.BuildProblem(polish_samples, &final_variables);
   PolishSummary polish;
   if (subsampled) {
     polish = StreamedPolish(fitter, problem.get(), &final_variables, options.max_iterations);
   } else {
-    const ceres::Solver::Summary summary = fitter.Solve(problem.get(), options.max_iterations);
+    const ceres::Solver::Summary summary =
+        SolveLeastSquares(fitter, polish_samples, &final_variables, options.max_iterations);
     polish.iterations = static_cast<int>(summary.iterations.size());
     polish.initial_cost = summary.initial_cost;
     polish.final_cost = summary.final_cost;

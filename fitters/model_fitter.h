@@ -155,6 +155,13 @@ class ModelFitter {
         problem->AddResidualBlock(cost, loss, v->d);
       }
     }
+    SetVariableBounds(problem.get(), v);
+    return problem;
+  }
+
+  // Bounds `problem`'s parameter blocks, those of `v`, to VariableBounds().
+  void SetVariableBounds(ceres::Problem* problem, Variables* v) const {
+    const int s_size = SpecularSize();
     const Bounds bounds = VariableBounds();
     for (int k = 0; k < 3; ++k) {
       problem->SetParameterLowerBound(v->d, k, bounds.lower[k]);
@@ -168,7 +175,6 @@ class ModelFitter {
       problem->SetParameterLowerBound(v->shape, 0, bounds.lower[3 + s_size]);
       problem->SetParameterUpperBound(v->shape, 0, bounds.upper[3 + s_size]);
     }
-    return problem;
   }
 
   // The box of the free variables, in the order d, s, shape (FreeVariables() of each).

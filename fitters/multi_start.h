@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "fitters/gram_solve.h"
 #include "fitters/model_fitter.h"
 
 namespace brdf::fitters {
@@ -32,9 +33,8 @@ Variables BestStart(const ModelFitter<ModelType>& fitter, const std::vector<FitS
   std::vector<int> start_iterations(starts.size());
   tbb::parallel_for(size_t{0}, starts.size(), [&](size_t k) {
     trials[k] = fitter.InitialGuess(samples, starts[k]);
-    auto problem = fitter.BuildProblem(samples, &trials[k]);
-    const ceres::Solver::Summary summary =
-        fitter.Solve(problem.get(), std::min(options.start_iterations, options.max_iterations));
+    const ceres::Solver::Summary summary = SolveLeastSquares(
+        fitter, samples, &trials[k], std::min(options.start_iterations, options.max_iterations));
     start_iterations[k] = static_cast<int>(summary.iterations.size());
     costs[k] = summary.final_cost;
   });
