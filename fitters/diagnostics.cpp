@@ -282,16 +282,34 @@ LobeResolution ResolveLobe(LobeFrame frame, double exponent,
   if (frame == LobeFrame::kNormal) return lobe;
   // The offset acos(exp(-x / e)) grows with x: the nearest sample off the peak is the one of
   // least x, so one offset is taken, not one a sample.
-  double nearest_x = std::numeric_limits<double>::infinity();
-  for (const FitSample& sample : samples) {
-    const double x = LobeExponentTerm(frame, exponent, sample.wi, sample.wo);
-    if (x < kFlankStart) {
-      ++lobe.peak_samples;
-      continue;
-    }
-    if (x <= kFlankEnd) ++lobe.flank_samples;
-    nearest_x = std::min(nearest_x, x);
-  }
+  // Counts and a minimum: the same in any order, so the samples are scanned in parallel.
+  struct Scan {
+    size_t peak = 0, flank = 0;
+    double nearest_x = std::numeric_limits<double>::infinity();
+  };
+  const Scan scan = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, samples.size()), Scan{},
+      [&](const tbb::blocked_range<size_t>& range, Scan partial) {
+        for (size_t k = range.begin(); k < range.end(); ++k) {
+          const double x = LobeExponentTerm(frame, exponent, samples[k].wi, samples[k].wo);
+          if (x < kFlankStart) {
+            ++partial.peak;
+            continue;
+          }
+          if (x <= kFlankEnd) ++partial.flank;
+          partial.nearest_x = std::min(partial.nearest_x, x);
+        }
+        return partial;
+      },
+      [](Scan a, const Scan& b) {
+        a.peak += b.peak;
+        a.flank += b.flank;
+        a.nearest_x = std::min(a.nearest_x, b.nearest_x);
+        return a;
+      });
+  lobe.peak_samples = scan.peak;
+  lobe.flank_samples = scan.flank;
+  const double nearest_x = scan.nearest_x;
   if (std::isfinite(nearest_x)) {
     lobe.nearest_off_peak_deg = std::acos(std::exp(-nearest_x / exponent)) * kRadToDeg;
   }

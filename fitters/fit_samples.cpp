@@ -1,6 +1,7 @@
 #include "fitters/fit_samples.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <algorithm>
 #include <cmath>
@@ -76,8 +77,14 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   };
   // Sized once: growing a vector of a million samples by doubling would hold the old and the
   // new copy at once and clear pages for both.
-  const size_t count = static_cast<size_t>(
-      std::count_if(measurement.samples.begin(), measurement.samples.end(), usable));
+  const std::vector<Sample>& source = measurement.samples;
+  const size_t count = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, source.size()), size_t{0},
+      [&](const tbb::blocked_range<size_t>& range, size_t partial) {
+        for (size_t k = range.begin(); k < range.end(); ++k) partial += usable(source[k]);
+        return partial;
+      },
+      [](size_t a, size_t b) { return a + b; });
   ReserveHugePages(&prepared.samples, count);
   const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
   if (per_sample_columns) source_index.reserve(count);
@@ -154,7 +161,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
     for (size_t k : source_index) sum += measurement.sigma[k].square();
     mean_sigma = (sum / static_cast<double>(source_index.size())).sqrt();
   }
-  for (size_t k = 0; k < samples.size(); ++k) {
+  tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
     FitSample& sample = samples[k];
     sample.weight *= normalization;
     sample.scale = Rgb::Constant(std::sqrt(sample.weight));
@@ -164,7 +171,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
         if (sigma[c] > 0 && mean_sigma[c] > 0) sample.scale[c] *= mean_sigma[c] / sigma[c];
       }
     }
-  }
+  });
   return prepared;
 }
 
