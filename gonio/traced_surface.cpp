@@ -6,11 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include "core/errors.h"
 #include "core/text.h"
@@ -25,6 +21,8 @@ constexpr int kRaysPerBatch = 4096;
 // Batches traced together, sorted by where their paths enter the tile (TraceIncidence): 2^18
 // paths, whose results (64 bytes each) are kept until their batches are summed.
 constexpr int kBatchesPerSweep = 64;
+// How many paths ahead the batch sums ask for a path's result.
+constexpr int64_t kPrefetchAhead = 16;
 // The sort's grid over the tile: kSortCells² cells along a Morton curve.
 constexpr uint32_t kSortCells = 256;
 
@@ -206,35 +204,14 @@ std::string TracedSurfaceSample::Modelled() const {
 
 namespace {
 
-// What one path delivered, kept until its batch is summed in ray order. One cache line, so
-// that it can be written to its place in ray order without reading that line first.
-struct alignas(64) PathResult {
+// What one path delivered, kept until its batch is summed in ray order.
+struct PathResult {
   Vec3 direction = Vec3::Zero();  // the escape direction
   Rgb power = Rgb::Zero();        // the throughput that escaped (0 if the path did not)
   double incident = 0;            // the source weight of the ray
   int32_t segments = 0;
   bool escaped = false, cut = false;
 };
-static_assert(sizeof(PathResult) == 64, "a path's result fills one cache line");
-
-// Writes `result` to `*slot` past the caches (a non-temporal store of the whole line): the
-// paths are traced in entry order, so their slots in ray order are scattered over 16 MB, and an
-// ordinary store would first read each line from memory. StoreFence() makes the stores visible
-// before the results are read.
-void StoreResult(const PathResult& result, PathResult* slot) {
-#if defined(__SSE2__)
-  const auto* from = reinterpret_cast<const __m128i*>(&result);
-  auto* to = reinterpret_cast<__m128i*>(slot);
-  for (int k = 0; k < 4; ++k) _mm_stream_si128(to + k, _mm_load_si128(from + k));
-#else
-  std::memcpy(static_cast<void*>(slot), &result, sizeof(PathResult));
-#endif
-}
-void StoreFence() {
-#if defined(__SSE2__)
-  _mm_sfence();
-#endif
-}
 
 // A path between its first segment and the rest.
 struct PathState {
@@ -321,26 +298,26 @@ class PathTracer {
     result->segments = static_cast<int32_t>(segments);
   }
 
-  // Traces the paths ray_begin + order[j] for j in [0, count) into results[order[j]], a group
-  // small enough that their first segments, which start close together in one direction, go to
+  // Traces the paths ray_begin + order[j] for j in [0, count) into results[j], a group small
+  // enough that their first segments, which start close together in one direction, go to
   // Embree as one stream.
   void TraceGroup(int64_t ray_begin, const uint32_t* order, int count, PathResult* results) const {
     PathState states[kGroup];
-    PathResult group[kGroup];
     SegmentQuery queries[kGroup];
     int live[kGroup];
     int started = 0;
     for (int j = 0; j < count; ++j) {
-      if (!Start(ray_begin + order[j], &states[j], &group[j])) continue;
+      PathResult& result = results[j];
+      result = PathResult();
+      if (!Start(ray_begin + order[j], &states[j], &result)) continue;
       scene_.Aim(states[j].origin, states[j].direction, &queries[started]);
       live[started++] = j;
     }
     if (started > 0) scene_.IntersectCoherent(queries, started);
     for (int m = 0; m < started; ++m) {
       const int j = live[m];
-      Finish(&states[j], &queries[m], &group[j]);
+      Finish(&states[j], &queries[m], &results[j]);
     }
-    for (int j = 0; j < count; ++j) StoreResult(group[j], &results[order[j]]);
   }
 
   // One Embree packet on an AVX-512 machine, two on AVX2.
@@ -350,7 +327,7 @@ class PathTracer {
   const EmbreeHeightField& scene_;
   const FacetMaterial& material_;
   int bounces_;
-  const SourceBeam source_;
+  const SourceBeam source_;  // the instrument's source about wi
   uint64_t incidence_seed_;
 };
 
@@ -368,7 +345,7 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
   // points along a Morton curve over the tile: neighbouring paths then walk the same part of
   // the BVH, which stays in cache. In random order nearly every query missed the cache.
   std::vector<PathResult> results;
-  std::vector<uint32_t> keys, order, bucket_start;
+  std::vector<uint32_t> keys, order, position, bucket_start;  // position[order[j]] = j
   for (int64_t first_batch = 0; first_batch < batches; first_batch += kBatchesPerSweep) {
     const int64_t last_batch = std::min(batches, first_batch + kBatchesPerSweep);
     const int64_t first = first_batch * kRaysPerBatch;
@@ -388,8 +365,12 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
     for (uint32_t key : keys) ++bucket_start[key + 1];
     for (size_t k = 1; k < bucket_start.size(); ++k) bucket_start[k] += bucket_start[k - 1];
     order.resize(count);
-    for (int64_t i = 0; i < count; ++i) order[bucket_start[keys[i]]++] = static_cast<uint32_t>(i);
-    results.resize(count);  // in ray order
+    position.resize(count);
+    for (int64_t i = 0; i < count; ++i) {
+      position[i] = bucket_start[keys[i]]++;
+      order[position[i]] = static_cast<uint32_t>(i);
+    }
+    results.resize(count);
     // Fixed groups of the sorted order, whatever the thread count: which paths share a stream
     // does not depend on the threads either.
     const int64_t groups = (count + PathTracer::kGroup - 1) / PathTracer::kGroup;
@@ -399,9 +380,8 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
             const int64_t j = g * PathTracer::kGroup;
             tracer.TraceGroup(first, order.data() + j,
                               static_cast<int>(std::min<int64_t>(PathTracer::kGroup, count - j)),
-                              results.data());
+                              results.data() + j);
           }
-          StoreFence();
         });
     // Each batch sums its paths in ray order, as if they had been traced one after another.
     tbb::parallel_for(first_batch, last_batch, [&](int64_t b) {
@@ -410,7 +390,9 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
       const int64_t begin = b * kRaysPerBatch - first;
       const int64_t end = std::min(count, begin + kRaysPerBatch);
       for (int64_t i = begin; i < end; ++i) {
-        const PathResult& path = results[i];
+        // The results lie in trace order, so these reads jump: ask for one well ahead.
+        if (i + kPrefetchAhead < end) __builtin_prefetch(&results[position[i + kPrefetchAhead]]);
+        const PathResult& path = results[position[i]];
         trace.incident += path.incident;
         trace.segments += path.segments;
         trace.paths_cut += path.cut;
