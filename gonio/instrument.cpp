@@ -100,23 +100,32 @@ double Instrument::SourceAngularRadius() const {
 }
 
 Vec3 Instrument::SourceDirection(const Vec3& wi, double u1, double u2, double* weight) const {
+  return SourceBeam(*this, wi).Direction(u1, u2, weight);
+}
+
+SourceBeam::SourceBeam(const Instrument& instrument, const Vec3& wi)
+    : instrument_(instrument),
+      wi_(wi),
+      frame_(Frame::FromZ(wi)),
+      cos_max_(std::cos(DegToRad(instrument.source_angular_radius_deg))) {}
+
+Vec3 SourceBeam::Direction(double u1, double u2, double* weight) const {
   Vec3 direction;
-  if (source_kind == SourceKind::kCollimated) {
+  if (instrument_.source_kind == Instrument::SourceKind::kCollimated) {
     // Each direction of the beam lights the surface with irradiance ∝ cos(theta_i').
-    direction = Frame::FromZ(wi).FromLocal(
-        SampleUniformCone(Point2(u1, u2), std::cos(DegToRad(source_angular_radius_deg))));
-    *weight = direction.z() > 0 ? direction.z() / wi.z() : 0.0;
+    direction = frame_.FromLocal(SampleUniformCone(Point2(u1, u2), cos_max_));
+    *weight = direction.z() > 0 ? direction.z() / wi_.z() : 0.0;
     return direction;
   }
   // Point lamp: a uniform point p of the lit spot (a disk on the sample plane) sees the lamp
   // along L - p, with irradiance cos(theta')/|L - p|² relative to the spot's centre.
-  const double radius = spot_radius_mm * 1e-3 * std::sqrt(u1);
+  const double distance = instrument_.source_distance_m;
+  const double radius = instrument_.spot_radius_mm * 1e-3 * std::sqrt(u1);
   const Vec3 point(radius * std::cos(2 * kPi * u2), radius * std::sin(2 * kPi * u2), 0.0);
-  const Vec3 to_lamp = source_distance_m * wi - point;
+  const Vec3 to_lamp = distance * wi_ - point;
   const double distance_squared = to_lamp.squaredNorm();
   direction = to_lamp / std::sqrt(distance_squared);
-  *weight = direction.z() > 0 ? (direction.z() / wi.z()) *
-                                    (source_distance_m * source_distance_m / distance_squared)
+  *weight = direction.z() > 0 ? (direction.z() / wi_.z()) * (distance * distance / distance_squared)
                               : 0.0;
   return direction;
 }

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sampling.h"
 #include "core/vec.h"
 
 namespace brdf::gonio {
@@ -76,6 +77,22 @@ struct Instrument {
   // unit square: a direction of the collimated beam's cone, or the direction from a point of
   // the lit spot to the point lamp. The weights average to about 1 over the square.
   Vec3 SourceDirection(const Vec3& wi, double u1, double u2, double* weight) const;
+};
+
+// The source's directions about one nominal incidence wi: Instrument::SourceDirection with what
+// depends on wi alone (its frame, the beam's cone) worked out once, for the many draws of one
+// incidence.
+class SourceBeam {
+ public:
+  SourceBeam(const Instrument& instrument, const Vec3& wi);
+  // Instrument::SourceDirection(wi, u1, u2, weight), the same value.
+  Vec3 Direction(double u1, double u2, double* weight) const;
+
+ private:
+  const Instrument& instrument_;
+  Vec3 wi_;
+  Frame frame_;     // about wi
+  double cos_max_;  // of the collimated beam's cone
 };
 
 // Reads an instrument JSON file; absent fields keep their defaults. Throws InputError naming

@@ -230,8 +230,7 @@ class PathTracer {
       : scene_(scene),
         material_(material),
         bounces_(bounces),
-        instrument_(instrument),
-        wi_(wi),
+        source_(instrument, wi),
         incidence_seed_(incidence_seed) {}
 
   // The first numbers of path `ray`: two for its source direction, then its entry point
@@ -251,7 +250,7 @@ class PathTracer {
   bool Start(int64_t ray, PathState* state, PathResult* result) const {
     Point2 source, entry;
     state->rng = StartRng(ray, &source, &entry);
-    const Vec3 wi_source = instrument_.SourceDirection(wi_, source.x(), source.y(), &state->weight);
+    const Vec3 wi_source = source_.Direction(source.x(), source.y(), &state->weight);
     result->incident = state->weight;
     if (state->weight <= 0) return false;
     state->origin = Vec3(entry.x() * scene_.size(), entry.y() * scene_.size(), scene_.top());
@@ -328,8 +327,7 @@ class PathTracer {
   const EmbreeHeightField& scene_;
   const FacetMaterial& material_;
   int bounces_;
-  const Instrument& instrument_;
-  Vec3 wi_;
+  const SourceBeam source_;  // the instrument's source about wi
   uint64_t incidence_seed_;
 };
 
