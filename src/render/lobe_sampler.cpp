@@ -117,8 +117,8 @@ BRDF_LANE_FUNCTION float LobeSampler::PowerCosineAxis(float x, float y, float z,
 }
 
 template <LobeFrame kFrame>
-void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count, float* x,
-                                     float* y, float* z) const {
+BRDF_LANE_FUNCTION void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count,
+                                                        float* x, float* y, float* z) const {
   // Into arrays of its own first: writes through x, y, z might alias this sampler's members,
   // and the run-time checks for that would be too many for the compiler to vectorize.
   constexpr int kChunk = 16;
@@ -136,8 +136,8 @@ void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count
 }
 
 template <LobeFrame kFrame>
-void LobeSampler::AxisMisPdfs(const float* x, const float* y, const float* z, int count,
-                              float* mis_pdf) const {
+BRDF_LANE_FUNCTION void LobeSampler::AxisMisPdfs(const float* x, const float* y, const float* z,
+                                                 int count, float* mis_pdf) const {
   constexpr int kChunk = 16;
   alignas(16) float one_minus_cos[kChunk], jacobian[kChunk];
   const float core = core_one_minus_cos_;
@@ -200,6 +200,12 @@ void LobeSampler::SampleBatch(const float* u0, const float* u1, int count, float
     }
     return;
   }
+  if (avx2_) return PowerCosineBatchAvx2(u0, u1, count, x, y, z);
+  PowerCosineBatch(u0, u1, count, x, y, z);
+}
+
+BRDF_LANE_FUNCTION void LobeSampler::PowerCosineBatchIn(const float* u0, const float* u1, int count,
+                                                        float* x, float* y, float* z) const {
   switch (lobe_.frame) {
     case LobeFrame::kNormal:
       return PowerCosineSamples<LobeFrame::kNormal>(u0, u1, count, x, y, z);
@@ -208,6 +214,16 @@ void LobeSampler::SampleBatch(const float* u0, const float* u1, int count, float
     case LobeFrame::kHalfVector:
       return PowerCosineSamples<LobeFrame::kHalfVector>(u0, u1, count, x, y, z);
   }
+}
+
+void LobeSampler::PowerCosineBatch(const float* u0, const float* u1, int count, float* x, float* y,
+                                   float* z) const {
+  PowerCosineBatchIn(u0, u1, count, x, y, z);
+}
+
+void LobeSampler::PowerCosineBatchAvx2(const float* u0, const float* u1, int count, float* x,
+                                       float* y, float* z) const {
+  PowerCosineBatchIn(u0, u1, count, x, y, z);
 }
 
 float LobeSampler::AxisOneMinusCos(const Vec3f& wi) const {
@@ -234,6 +250,22 @@ float LobeSampler::MisPdf(const Vec3f& wi) const {
 
 void LobeSampler::MisPdfBatch(const float* x, const float* y, const float* z, int count,
                               float* mis_pdf) const {
+  if (avx2_) return MisPdfsAvx2(x, y, z, count, mis_pdf);
+  MisPdfs(x, y, z, count, mis_pdf);
+}
+
+void LobeSampler::MisPdfs(const float* x, const float* y, const float* z, int count,
+                          float* mis_pdf) const {
+  MisPdfsIn(x, y, z, count, mis_pdf);
+}
+
+void LobeSampler::MisPdfsAvx2(const float* x, const float* y, const float* z, int count,
+                              float* mis_pdf) const {
+  MisPdfsIn(x, y, z, count, mis_pdf);
+}
+
+BRDF_LANE_FUNCTION void LobeSampler::MisPdfsIn(const float* x, const float* y, const float* z,
+                                               int count, float* mis_pdf) const {
   // The distributions are microfacet normals: half-vector lobes.
   if (lobe_.distribution != nullptr) {
     return AxisMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);
