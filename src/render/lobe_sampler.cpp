@@ -117,8 +117,8 @@ BRDF_LANE_FUNCTION float LobeSampler::PowerCosineAxis(float x, float y, float z,
 }
 
 template <LobeFrame kFrame>
-BRDF_LANE_FUNCTION void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count,
-                                                        float* x, float* y, float* z) const {
+void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count, float* x,
+                                     float* y, float* z) const {
   // Into arrays of its own first: writes through x, y, z might alias this sampler's members,
   // and the run-time checks for that would be too many for the compiler to vectorize.
   constexpr int kChunk = 16;
@@ -200,12 +200,6 @@ void LobeSampler::SampleBatch(const float* u0, const float* u1, int count, float
     }
     return;
   }
-  if (avx2_) return PowerCosineBatchAvx2(u0, u1, count, x, y, z);
-  PowerCosineBatch(u0, u1, count, x, y, z);
-}
-
-BRDF_LANE_FUNCTION void LobeSampler::PowerCosineBatchIn(const float* u0, const float* u1, int count,
-                                                        float* x, float* y, float* z) const {
   switch (lobe_.frame) {
     case LobeFrame::kNormal:
       return PowerCosineSamples<LobeFrame::kNormal>(u0, u1, count, x, y, z);
@@ -214,16 +208,6 @@ BRDF_LANE_FUNCTION void LobeSampler::PowerCosineBatchIn(const float* u0, const f
     case LobeFrame::kHalfVector:
       return PowerCosineSamples<LobeFrame::kHalfVector>(u0, u1, count, x, y, z);
   }
-}
-
-void LobeSampler::PowerCosineBatch(const float* u0, const float* u1, int count, float* x, float* y,
-                                   float* z) const {
-  PowerCosineBatchIn(u0, u1, count, x, y, z);
-}
-
-void LobeSampler::PowerCosineBatchAvx2(const float* u0, const float* u1, int count, float* x,
-                                       float* y, float* z) const {
-  PowerCosineBatchIn(u0, u1, count, x, y, z);
 }
 
 float LobeSampler::AxisOneMinusCos(const Vec3f& wi) const {

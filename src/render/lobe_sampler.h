@@ -102,18 +102,13 @@ class LobeSampler {
   // MisPdfBatch in the lobe's frame (a distribution's: the half vector).
   template <LobeFrame kFrame>
   void AxisMisPdfs(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
-  // The power cosine's draws and every lobe's MisPdf, a batch at a time, through the templates
-  // of the lobe's frame; each compiled a second time for AVX2 (8 lanes; no FMA, so the same
-  // float operations and numbers as the baseline's 4) and chosen at run time.
-  void PowerCosineBatch(const float* u0, const float* u1, int count, float* x, float* y,
-                        float* z) const;
-  BRDF_HDR_AVX2 void PowerCosineBatchAvx2(const float* u0, const float* u1, int count, float* x,
-                                          float* y, float* z) const;
+  // Every lobe's MisPdf a batch at a time, through the templates of the lobe's frame; compiled
+  // a second time for AVX2 (8 lanes; no FMA, so the same float operations and numbers as the
+  // baseline's 4) and chosen at run time. (The power cosine's draws stay 4 lanes wide: GCC 12
+  // compiles their loop scalar for AVX2.)
   void MisPdfs(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
   BRDF_HDR_AVX2 void MisPdfsAvx2(const float* x, const float* y, const float* z, int count,
                                  float* mis_pdf) const;
-  void PowerCosineBatchIn(const float* u0, const float* u1, int count, float* x, float* y,
-                          float* z) const;
   void MisPdfsIn(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
   // (e+1)/(2 pi) (1 - one_minus_cos)^e, keeping the digits of a cosine near 1.
   BRDF_LANE_FUNCTION float PowerCosineDensity(float one_minus_cos) const {
