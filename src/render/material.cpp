@@ -16,11 +16,21 @@
 namespace brdf {
 namespace {
 
-// A model's formula in float (its templated Eval, models/common.h), for EvalFloat.
+// A model's formula in float (its templated Eval, models/common.h), for EvalFloat, and for a
+// batch of wi (EvalFloatBatch: one indirect call a batch, the formula inlined in its loop).
 using FloatModelEval = RgbF (*)(const float* params, const Vec3f& wi, const Vec3f& wo);
+using FloatModelBatchEval = void (*)(const float* params, const float* wi_x, const float* wi_y,
+                                     const float* wi_z, const Vec3f& wo, int count, RgbF* f);
 template <typename M>
 RgbF EvalModelInFloat(const float* params, const Vec3f& wi, const Vec3f& wo) {
   return M::template Eval<float>(params, wi, wo);
+}
+template <typename M>
+void EvalModelBatchInFloat(const float* params, const float* wi_x, const float* wi_y,
+                           const float* wi_z, const Vec3f& wo, int count, RgbF* f) {
+  for (int k = 0; k < count; ++k) {
+    f[k] = M::template Eval<float>(params, Vec3f(wi_x[k], wi_y[k], wi_z[k]), wo);
+  }
 }
 
 // Float keeps a relative rounding error of about e 2^-24 in cos^e (the cosine's last bit,
@@ -38,12 +48,21 @@ class ModelMaterial : public Material {
       eval_float_ = VisitModelType(model_.name(), [](auto model_type) -> FloatModelEval {
         return &EvalModelInFloat<decltype(model_type)>;
       });
+      eval_float_batch_ = VisitModelType(model_.name(), [](auto model_type) -> FloatModelBatchEval {
+        return &EvalModelBatchInFloat<decltype(model_type)>;
+      });
     }
   }
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override { return model_.Eval(wi, wo); }
   RgbF EvalFloat(const Vec3f& wi, const Vec3f& wo) const override {
     if (eval_float_ == nullptr) return Material::EvalFloat(wi, wo);
     return eval_float_(params_float_.data(), wi, wo);
+  }
+  void EvalFloatBatch(const float* wi_x, const float* wi_y, const float* wi_z, const Vec3f& wo,
+                      int count, RgbF* f) const override {
+    if (eval_float_batch_ == nullptr)
+      return Material::EvalFloatBatch(wi_x, wi_y, wi_z, wo, count, f);
+    eval_float_batch_(params_float_.data(), wi_x, wi_y, wi_z, wo, count, f);
   }
   std::string Describe() const override { return model_.ToString(); }
   std::optional<LobeCoordinates> SpecularLobe() const override { return lobe_; }
@@ -53,6 +72,7 @@ class ModelMaterial : public Material {
   std::optional<LobeCoordinates> lobe_;
   std::vector<float> params_float_;
   FloatModelEval eval_float_ = nullptr;
+  FloatModelBatchEval eval_float_batch_ = nullptr;
 };
 
 // Dense tabulated data (MERL, RGL-EPFL) through the reader's evaluator (Measurement::tabulated,
