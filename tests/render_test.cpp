@@ -180,20 +180,7 @@ TEST(Render, SameImageWithAndWithoutTheAvx2Paths) {
   if (!HdrAvx2Enabled()) GTEST_SKIP() << "no AVX2 on this processor: one path only";
   testing::ScratchDir dir;
   const Model glossy = ParseModel("blinn-phong:rho_d=0.2:rho_s=0.5:m=300");
-  Measurement measurement;
-  measurement.format = "native-csv";
-  for (double theta_i = 0.0; theta_i < 80.0; theta_i += 10.0) {
-    for (double theta_o = 0.0; theta_o < 80.0; theta_o += 5.0) {
-      for (double phi_o = 0.0; phi_o <= 180.0; phi_o += 10.0) {
-        Sample sample;
-        sample.wi = SphericalDirection(DegToRad(theta_i), kPi);
-        sample.wo = SphericalDirection(DegToRad(theta_o), DegToRad(phi_o));
-        sample.value = glossy.Eval(sample.wi, sample.wo);
-        measurement.samples.push_back(sample);
-      }
-    }
-  }
-  WriteMeasurement(measurement, dir.File("glossy.csv"));
+  WriteMeasurement(testing::ScatteredSamplesOf(glossy), dir.File("glossy.csv"));
   // A dim sky with one bright pixel: the lobes' samples find it, the others mostly miss it.
   Image sky(32, 16);
   for (int64_t i = 0; i < sky.pixel_count(); ++i) {
@@ -265,21 +252,8 @@ TEST(Render, MeasuredGlossyDataGetALobeToSampleDiffuseDataNone) {
   testing::ScratchDir dir;
   for (const char* spec : {"blinn-phong:rho_d=0.2:rho_s=0.5:m=100", "lambert:rho_d=0.5"}) {
     const Model model = ParseModel(spec);
-    Measurement measurement;
-    measurement.format = "native-csv";
-    for (double theta_i_deg = 0.0; theta_i_deg < 80.0; theta_i_deg += 10.0) {
-      for (double theta_o_deg = 0.0; theta_o_deg < 80.0; theta_o_deg += 2.5) {
-        for (double phi_o_deg = 0.0; phi_o_deg <= 180.0; phi_o_deg += 2.5) {
-          Sample sample;
-          sample.wi = SphericalDirection(theta_i_deg * kPi / 180.0, kPi);
-          sample.wo = SphericalDirection(theta_o_deg * kPi / 180.0, phi_o_deg * kPi / 180.0);
-          sample.value = model.Eval(sample.wi, sample.wo);
-          measurement.samples.push_back(sample);
-        }
-      }
-    }
     const std::string file = dir.File(std::string(spec).substr(0, 5) + ".csv");
-    WriteMeasurement(measurement, file);
+    WriteMeasurement(testing::ScatteredSamplesOf(model, 2.5, 2.5), file);
     const std::optional<LobeCoordinates> lobe = LoadMaterial(file)->SpecularLobe();
     if (model.name() == "lambert") {
       EXPECT_FALSE(lobe.has_value());
