@@ -255,22 +255,9 @@ TEST(RenderFloat, EnvironmentFloatDrawFollowsItsPdf) {
 TEST(RenderFloat, FloatEvaluatorsAgreeWithEval) {
   testing::ScratchDir dir;
   // Scattered samples of a glossy model: the tabulated interpolant (a float copy of its table).
-  const Model glossy = ParseModel("blinn-phong:rho_d=0.2:rho_s=0.5:m=60");
-  Measurement measurement;
-  measurement.format = "native-csv";
-  for (double theta_i = 0.0; theta_i < 80.0; theta_i += 10.0) {
-    for (double theta_o = 0.0; theta_o < 80.0; theta_o += 5.0) {
-      for (double phi_o = 0.0; phi_o <= 180.0; phi_o += 10.0) {
-        Sample sample;
-        sample.wi = SphericalDirection(DegToRad(theta_i), kPi);
-        sample.wo = SphericalDirection(DegToRad(theta_o), DegToRad(phi_o));
-        sample.value = glossy.Eval(sample.wi, sample.wo);
-        measurement.samples.push_back(sample);
-      }
-    }
-  }
   const std::string file = dir.File("glossy.csv");
-  WriteMeasurement(measurement, file);
+  WriteMeasurement(testing::ScatteredSamplesOf(ParseModel("blinn-phong:rho_d=0.2:rho_s=0.5:m=60")),
+                   file);
   std::mt19937_64 random(17);
   for (const std::string& spec :
        {std::string("phong:rho_d=0.3:rho_s=0.5:n=400"), std::string("ggx:alpha=0.05"),

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/angles.h"
+
 namespace brdf::testing {
 
 std::string DataPath(const std::string& relative) {
@@ -81,6 +83,23 @@ CommandResult RunCommand(const std::string& command) {
 
 CommandResult RunBrdf(const std::string& arguments) {
   return RunCommand(std::string("'") + BRDFKIT_BINARY + "' " + arguments);
+}
+
+Measurement ScatteredSamplesOf(const Model& model, double theta_o_step, double phi_o_step) {
+  Measurement measurement;
+  measurement.format = "native-csv";
+  for (double theta_i = 0.0; theta_i < 80.0; theta_i += 10.0) {
+    for (double theta_o = 0.0; theta_o < 80.0; theta_o += theta_o_step) {
+      for (double phi_o = 0.0; phi_o <= 180.0; phi_o += phi_o_step) {
+        Sample sample;
+        sample.wi = SphericalDirection(DegToRad(theta_i), kPi);
+        sample.wo = SphericalDirection(DegToRad(theta_o), DegToRad(phi_o));
+        sample.value = model.Eval(sample.wi, sample.wo);
+        measurement.samples.push_back(sample);
+      }
+    }
+  }
+  return measurement;
 }
 
 }  // namespace brdf::testing

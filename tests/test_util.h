@@ -4,6 +4,9 @@
 
 #include <string>
 
+#include "core/measurement.h"
+#include "models/registry.h"
+
 namespace brdf::testing {
 
 // Path of a file under data/ (the bundled real measurements).
@@ -45,5 +48,11 @@ struct CommandResult {
 CommandResult RunCommand(const std::string& command);
 // Runs the brdf binary with `arguments` (a shell-quoted string), no stdin.
 CommandResult RunBrdf(const std::string& arguments);
+
+// Scattered samples of `model` (native CSV): wi at theta_i = 0, 10, ..., 70 deg in the plane
+// phi = 180 deg, wo on the grid of theta_o in [0, 80) deg and phi_o in [0, 180] deg with the
+// steps given (in degrees).
+Measurement ScatteredSamplesOf(const Model& model, double theta_o_step = 5.0,
+                               double phi_o_step = 10.0);
 
 }  // namespace brdf::testing

@@ -1,5 +1,7 @@
 #include "energy/measured.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -59,16 +61,21 @@ class ScatteredInterpolator {
       cells_[CellIndex(BinOf(pair.theta_o), BinOf(pair.theta_i))].push_back(index);
     }
     // Typical spacing: the median over samples of the distance to the nearest other sample.
-    std::vector<double> nearest;
-    nearest.reserve(points_.size());
-    for (const Point& point : points_) {
-      const std::array<Neighbour, kNeighbours> found = Nearest(point.pair);
+    // Searched in parallel, gathered in order (-1: no other sample).
+    std::vector<double> distances(points_.size(), -1.0);
+    tbb::parallel_for(size_t{0}, points_.size(), [&](size_t index) {
+      const std::array<Neighbour, kNeighbours> found = Nearest(points_[index].pair);
       for (const Neighbour& neighbour : found) {
         if (neighbour.squared_distance > 1e-18 && neighbour.index >= 0) {
-          nearest.push_back(std::sqrt(neighbour.squared_distance));
+          distances[index] = std::sqrt(neighbour.squared_distance);
           break;
         }
       }
+    });
+    std::vector<double> nearest;
+    nearest.reserve(points_.size());
+    for (double distance : distances) {
+      if (distance >= 0.0) nearest.push_back(distance);
     }
     if (!nearest.empty()) {
       std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
@@ -120,8 +127,14 @@ class ScatteredInterpolator {
     return std::clamp(static_cast<int>(theta / kBinWidth), 0, kBins - 1);
   }
   static int CellIndex(int bin_o, int bin_i) { return bin_o * kBins + bin_i; }
+  // A lower bound on the squared chord (2 sin(angle / 2))^2 of an angle in [0, pi]: the sine's
+  // series alternates with falling terms there, so 2 sin(x / 2) >= x - x^3 / 24 (within
+  // 0.3 % of it below pi / 2). Cheaper than the sine, which made up half the cost of
+  // tabulating the interpolant; the search skips a cell only when even this bound is too far,
+  // so it finds the same neighbours.
   static double SquaredChord(double angle) {
-    const double chord = 2.0 * std::sin(0.5 * std::max(0.0, angle));
+    const double x = std::max(0.0, angle);
+    const double chord = x - x * x * x * (1.0 / 24.0);
     return chord * chord;
   }
   // Distance from theta to the bin's interval of polar angles.

@@ -136,8 +136,8 @@ void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count
 }
 
 template <LobeFrame kFrame>
-void LobeSampler::AxisMisPdfs(const float* x, const float* y, const float* z, int count,
-                              float* mis_pdf) const {
+BRDF_LANE_FUNCTION void LobeSampler::AxisMisPdfs(const float* x, const float* y, const float* z,
+                                                 int count, float* mis_pdf) const {
   constexpr int kChunk = 16;
   alignas(16) float one_minus_cos[kChunk], jacobian[kChunk];
   const float core = core_one_minus_cos_;
@@ -234,6 +234,22 @@ float LobeSampler::MisPdf(const Vec3f& wi) const {
 
 void LobeSampler::MisPdfBatch(const float* x, const float* y, const float* z, int count,
                               float* mis_pdf) const {
+  if (avx2_) return MisPdfsAvx2(x, y, z, count, mis_pdf);
+  MisPdfs(x, y, z, count, mis_pdf);
+}
+
+void LobeSampler::MisPdfs(const float* x, const float* y, const float* z, int count,
+                          float* mis_pdf) const {
+  MisPdfsIn(x, y, z, count, mis_pdf);
+}
+
+void LobeSampler::MisPdfsAvx2(const float* x, const float* y, const float* z, int count,
+                              float* mis_pdf) const {
+  MisPdfsIn(x, y, z, count, mis_pdf);
+}
+
+BRDF_LANE_FUNCTION void LobeSampler::MisPdfsIn(const float* x, const float* y, const float* z,
+                                               int count, float* mis_pdf) const {
   // The distributions are microfacet normals: half-vector lobes.
   if (lobe_.distribution != nullptr) {
     return AxisMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);

@@ -9,17 +9,28 @@
 #include "core/colour.h"
 #include "core/errors.h"
 #include "energy/measured.h"
+#include "hdr/simd.h"
 #include "io/formats.h"
 #include "models/model_source.h"
 
 namespace brdf {
 namespace {
 
-// A model's formula in float (its templated Eval, models/common.h), for EvalFloat.
+// A model's formula in float (its templated Eval, models/common.h), for EvalFloat, and for a
+// batch of wi (EvalFloatBatch: one indirect call a batch, the formula inlined in its loop).
 using FloatModelEval = RgbF (*)(const float* params, const Vec3f& wi, const Vec3f& wo);
+using FloatModelBatchEval = void (*)(const float* params, const float* wi_x, const float* wi_y,
+                                     const float* wi_z, const Vec3f& wo, int count, RgbF* f);
 template <typename M>
 RgbF EvalModelInFloat(const float* params, const Vec3f& wi, const Vec3f& wo) {
   return M::template Eval<float>(params, wi, wo);
+}
+template <typename M>
+void EvalModelBatchInFloat(const float* params, const float* wi_x, const float* wi_y,
+                           const float* wi_z, const Vec3f& wo, int count, RgbF* f) {
+  for (int k = 0; k < count; ++k) {
+    f[k] = M::template Eval<float>(params, Vec3f(wi_x[k], wi_y[k], wi_z[k]), wo);
+  }
 }
 
 // Float keeps a relative rounding error of about e 2^-24 in cos^e (the cosine's last bit,
@@ -37,12 +48,21 @@ class ModelMaterial : public Material {
       eval_float_ = VisitModelType(model_.name(), [](auto model_type) -> FloatModelEval {
         return &EvalModelInFloat<decltype(model_type)>;
       });
+      eval_float_batch_ = VisitModelType(model_.name(), [](auto model_type) -> FloatModelBatchEval {
+        return &EvalModelBatchInFloat<decltype(model_type)>;
+      });
     }
   }
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override { return model_.Eval(wi, wo); }
   RgbF EvalFloat(const Vec3f& wi, const Vec3f& wo) const override {
     if (eval_float_ == nullptr) return Material::EvalFloat(wi, wo);
     return eval_float_(params_float_.data(), wi, wo);
+  }
+  void EvalFloatBatch(const float* wi_x, const float* wi_y, const float* wi_z, const Vec3f& wo,
+                      int count, RgbF* f) const override {
+    if (eval_float_batch_ == nullptr)
+      return Material::EvalFloatBatch(wi_x, wi_y, wi_z, wo, count, f);
+    eval_float_batch_(params_float_.data(), wi_x, wi_y, wi_z, wo, count, f);
   }
   std::string Describe() const override { return model_.ToString(); }
   std::optional<LobeCoordinates> SpecularLobe() const override { return lobe_; }
@@ -52,6 +72,7 @@ class ModelMaterial : public Material {
   std::optional<LobeCoordinates> lobe_;
   std::vector<float> params_float_;
   FloatModelEval eval_float_ = nullptr;
+  FloatModelBatchEval eval_float_batch_ = nullptr;
 };
 
 // Dense tabulated data (MERL, RGL-EPFL) through the reader's evaluator (Measurement::tabulated,
@@ -69,6 +90,21 @@ class MeasuredTableMaterial : public Material {
  private:
   MeasuredBrdf measured_;
   std::string lookup_name_;
+};
+
+// Four lanes of float or double as one vector (GCC's and Clang's vector extension: the
+// arithmetic of each lane is that of the scalar type), and the mask a comparison gives.
+template <typename T>
+struct FourLanes;
+template <>
+struct FourLanes<float> {
+  using Vector = float __attribute__((vector_size(16)));
+  using Mask = int32_t __attribute__((vector_size(16)));
+};
+template <>
+struct FourLanes<double> {
+  using Vector = double __attribute__((vector_size(32)));
+  using Mask = int64_t __attribute__((vector_size(32)));
 };
 
 // Scattered data: the shared inverse-distance interpolant (energy/measured.h), tabulated once
@@ -97,38 +133,44 @@ class TabulatedMaterial : public Material {
       cells_[cell] = measured.brdf(wi, wo).value;
     });
     lobe_ = EstimateLobe();
-    cells_float_.reserve(cells_.size());
-    for (const Rgb& cell : cells_) cells_float_.push_back(cell.cast<float>());
+    padded_ = Padded<double>(cells_);
+    padded_float_ = Padded<float>(cells_);
   }
 
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override {
     if (wi.z() <= 0.0 || wo.z() <= 0.0) return Rgb::Zero();
     const HalfDiff hd = ToHalfDiff(wi, wo);
     const double coordinates[3] = {hd.theta_h, hd.theta_d, std::fmod(hd.phi_d + 2 * kPi, kPi)};
-    return Interpolate(coordinates, cells_);
+    return Interpolate(coordinates, padded_);
   }
 
   RgbF EvalFloat(const Vec3f& wi, const Vec3f& wo) const override {
     if (!(wi.z() > 0.0f) || !(wo.z() > 0.0f)) return RgbF::Zero();
     float coordinates[3];
     HalfDiffFloat(wi.x(), wi.y(), wi.z(), wo, &coordinates[0], &coordinates[1], &coordinates[2]);
-    return Interpolate(coordinates, cells_float_);
+    return Interpolate(coordinates, padded_float_);
   }
-  // The angles first, a batch at a time (the loop vectorizes), then the blends, which gather.
+  // The angles, the cells' places and the corners' weights first, a batch at a time (a loop
+  // that vectorizes: 8 lanes where the processor has AVX2, else 4, the same numbers), then the
+  // blends, which gather.
   void EvalFloatBatch(const float* wi_x, const float* wi_y, const float* wi_z, const Vec3f& wo,
                       int count, RgbF* f) const override {
-    constexpr int kChunk = 16;
-    alignas(16) float theta_h[kChunk], theta_d[kChunk], phi_d[kChunk];
+    alignas(32) int base[kChunk];
+    alignas(32) float weights[8][kChunk];
+    const bool avx2 = HdrAvx2Enabled();
     for (int first = 0; first < count; first += kChunk) {
       const int n = std::min(kChunk, count - first);
-      for (int k = 0; k < n; ++k) {
-        HalfDiffFloat(wi_x[first + k], wi_y[first + k], wi_z[first + k], wo, &theta_h[k],
-                      &theta_d[k], &phi_d[k]);
+      if (avx2) {
+        PlacesAvx2(wi_x + first, wi_y + first, wi_z + first, wo, n, base, weights);
+      } else {
+        Places(wi_x + first, wi_y + first, wi_z + first, wo, n, base, weights);
       }
       for (int k = 0; k < n; ++k) {
-        const float coordinates[3] = {theta_h[k], theta_d[k], phi_d[k]};
+        const float corner_weights[8] = {weights[0][k], weights[1][k], weights[2][k],
+                                         weights[3][k], weights[4][k], weights[5][k],
+                                         weights[6][k], weights[7][k]};
         f[first + k] = wi_z[first + k] > 0.0f && wo.z() > 0.0f
-                           ? Interpolate(coordinates, cells_float_)
+                           ? Blend(base[k], corner_weights, padded_float_)
                            : RgbF::Zero();
       }
     }
@@ -139,13 +181,37 @@ class TabulatedMaterial : public Material {
  private:
   static constexpr double kRange[3] = {kPi / 2, kPi / 2, kPi};
 
+  // For n <= kChunk directions wi (and wo): the lower corners' indices in the padded table
+  // and the corners' weights (Locate) of their half/difference angles.
+  static constexpr int kChunk = 16;
+  BRDF_LANE_FUNCTION static void PlacesOf(const float* wi_x, const float* wi_y, const float* wi_z,
+                                          const Vec3f& wo, int n, int* base,
+                                          float (*weights)[kChunk]) {
+    for (int k = 0; k < n; ++k) {
+      float coordinates[3], corner_weights[8];
+      HalfDiffFloat(wi_x[k], wi_y[k], wi_z[k], wo, &coordinates[0], &coordinates[1],
+                    &coordinates[2]);
+      base[k] = Locate(coordinates, corner_weights);
+      for (int corner = 0; corner < 8; ++corner) weights[corner][k] = corner_weights[corner];
+    }
+  }
+  static void Places(const float* wi_x, const float* wi_y, const float* wi_z, const Vec3f& wo,
+                     int n, int* base, float (*weights)[kChunk]) {
+    PlacesOf(wi_x, wi_y, wi_z, wo, n, base, weights);
+  }
+  BRDF_HDR_AVX2 static void PlacesAvx2(const float* wi_x, const float* wi_y, const float* wi_z,
+                                       const Vec3f& wo, int n, int* base,
+                                       float (*weights)[kChunk]) {
+    PlacesOf(wi_x, wi_y, wi_z, wo, n, base, weights);
+  }
+
   // ToHalfDiff (core/angles.h) in float for wi and wo above the horizon, written out: with
   // h = (sin theta_h cos phi_h, sin theta_h sin phi_h, cos theta_h), rotating wi by -phi_h
   // about z and then by -theta_h about y expresses it in the frame
   // (Rz(phi_h) Ry(theta_h) x, Rz(phi_h) y, h). Selects instead of branches (render/
   // float_math.h), so that a loop over a batch vectorizes; phi_d comes folded into [0, pi).
-  static void HalfDiffFloat(float wi_x, float wi_y, float wi_z, const Vec3f& wo, float* theta_h,
-                            float* theta_d, float* phi_d) {
+  BRDF_LANE_FUNCTION static void HalfDiffFloat(float wi_x, float wi_y, float wi_z, const Vec3f& wo,
+                                               float* theta_h, float* theta_d, float* phi_d) {
     const float sum_x = wi_x + wo.x(), sum_y = wi_y + wo.y(), sum_z = wi_z + wo.z();
     const float norm = std::sqrt(sum_x * sum_x + sum_y * sum_y + sum_z * sum_z);
     const float h_x = sum_x / norm, h_y = sum_y / norm, h_z = sum_z / norm;
@@ -193,46 +259,85 @@ class TabulatedMaterial : public Material {
     return LobeCoordinates{LobeFrame::kHalfVector, exponent};
   }
 
+  // The table for the lookups: a cell is one vector of four (red, green, blue, 0), so that a
+  // blend reads and weighs a corner at once, and the table has one more cell at each end of
+  // every axis (clamped copies in theta_h and theta_d, periodic ones in phi_d), so that the
+  // eight corners of any point lie at fixed offsets from the lower one, without clamps or
+  // wrap-arounds.
+  static constexpr int kPadded = kBins + 3;  // the lower corner's index runs over 0..kBins + 1
+  template <typename T>
+  using Cell = typename FourLanes<T>::Vector;
+  template <typename T>
+  static std::vector<Cell<T>> Padded(const std::vector<Rgb>& cells) {
+    // Padded index i is cell i - 1 of the axis.
+    auto of = [](int d, int i) {
+      return d == 2 ? (i - 1 + kBins) % kBins : std::clamp(i - 1, 0, kBins - 1);
+    };
+    std::vector<Cell<T>> padded(kPadded * kPadded * kPadded);
+    for (int h = 0; h < kPadded; ++h) {
+      for (int d = 0; d < kPadded; ++d) {
+        for (int p = 0; p < kPadded; ++p) {
+          const Rgb& cell = cells[(of(0, h) * kBins + of(1, d)) * kBins + of(2, p)];
+          padded[(h * kPadded + d) * kPadded + p] =
+              Cell<T>{T(cell[0]), T(cell[1]), T(cell[2]), T(0)};
+        }
+      }
+    }
+    return padded;
+  }
+
   // Trilinear between cell centres (nearest-cell lookups drew the grid as rings around a
   // highlight) at (theta_h, theta_d, phi_d in [0, pi)). theta_h and theta_d clamp at the ends;
-  // phi_d is periodic with period pi.
+  // phi_d is periodic with period pi. Locate gives the lower corner's index in the padded
+  // table and the eight corners' weights (corner bit d set: the upper one along axis d);
+  // without branches, so that a loop over a batch vectorizes.
   template <typename T>
-  static RgbT<T> Interpolate(const T coordinates[3], const std::vector<RgbT<T>>& cells) {
-    int low[3], high[3];
+  BRDF_LANE_FUNCTION static int Locate(const T coordinates[3], T weights[8]) {
+    int index = 0;
     T t[3];
     for (int d = 0; d < 3; ++d) {
       // u in [-1/2, kBins - 1/2] for directions above the horizon (NaN directions: -1/2);
       // truncating u + 1 floors it without a libm call.
       T u = coordinates[d] / T(kRange[d]) * T(kBins) - T(0.5);
       u = u >= T(-0.5) ? std::min(u, T(kBins)) : T(-0.5);
-      const int below = static_cast<int>(u + T(1)) - 1;
-      t[d] = u - T(below);
-      if (d == 2) {
-        low[d] = (below + kBins) % kBins;
-        high[d] = (below + 1) % kBins;
-      } else {
-        low[d] = std::clamp(below, 0, kBins - 1);
-        high[d] = std::clamp(below + 1, 0, kBins - 1);
-      }
-      if (!(t[d] >= T(0) && t[d] <= T(1))) t[d] = T(0);  // NaN directions: any corner
+      const int below = static_cast<int>(u + T(1)) - 1;  // -1..kBins
+      const T fraction = u - T(below);
+      t[d] = (fraction >= T(0)) & (fraction <= T(1)) ? fraction : T(0);  // NaN: any corner
+      index = index * kPadded + below + 1;
     }
-    RgbT<T> value = RgbT<T>::Zero();
     for (int corner = 0; corner < 8; ++corner) {
       T weight = T(1);
-      int index[3];
-      for (int d = 0; d < 3; ++d) {
-        const bool upper = (corner >> d) & 1;
-        index[d] = upper ? high[d] : low[d];
-        weight *= upper ? t[d] : T(1) - t[d];
-      }
-      if (weight > T(0)) value += weight * cells[(index[0] * kBins + index[1]) * kBins + index[2]];
+      for (int d = 0; d < 3; ++d) weight *= (corner >> d) & 1 ? t[d] : T(1) - t[d];
+      weights[corner] = weight;
     }
-    return value;
+    return index;
+  }
+  template <typename T>
+  static RgbT<T> Blend(int base, const T weights[8], const std::vector<Cell<T>>& cells) {
+    using Mask = typename FourLanes<T>::Mask;
+    Cell<T> value = {};
+    for (int corner = 0; corner < 8; ++corner) {
+      const int offset =
+          (corner & 1 ? kPadded * kPadded : 0) + (corner & 2 ? kPadded : 0) + (corner & 4 ? 1 : 0);
+      const Cell<T> weight = Cell<T>{} + weights[corner];
+      // A corner of weight 0 adds nothing, whatever its value (as a branch would skip it).
+      const Mask used = weight > Cell<T>{};
+      value +=
+          reinterpret_cast<Cell<T>>(reinterpret_cast<Mask>(weight * cells[base + offset]) & used);
+    }
+    return RgbT<T>(value[0], value[1], value[2]);
+  }
+  template <typename T>
+  static RgbT<T> Interpolate(const T coordinates[3], const std::vector<Cell<T>>& cells) {
+    T weights[8];
+    const int base = Locate(coordinates, weights);
+    return Blend(base, weights, cells);
   }
 
   std::string description_;
   std::vector<Rgb> cells_;
-  std::vector<RgbF> cells_float_;  // the same, for EvalFloat
+  std::vector<Cell<double>> padded_;       // the same, padded, for Eval
+  std::vector<Cell<float>> padded_float_;  // and in float, for EvalFloat
   std::optional<LobeCoordinates> lobe_;
 };
 
