@@ -115,7 +115,7 @@ class AnalyticBatchCost : public ceres::CostFunction {
         half_squared += 0.5 * residual * residual;
       }
     });
-    // The cost as SumOverBlocks adds it up from a batch's residuals (HalfSquaredSum).
+    // The cost as HalfSquaredSum (covariance.h) adds it up from a batch's residuals.
     *cost += whole_batch
                  ? 0.5 * Eigen::Map<const Eigen::VectorXd>(residuals, 3 * count_).squaredNorm()
                  : half_squared;

@@ -226,27 +226,22 @@ Value ReduceOverBatches(const ModelFitter<ModelType>& fitter, ceres::Problem* pr
       combine);
 }
 
-// Sums over the residuals of `problem` at `v` (ReduceOverBatches): add(partial, first_row,
-// residuals, jacobian) for each batch. Without `with_jacobian` only the residuals are evaluated
-// and `add` gets an empty Jacobian.
-template <typename ModelType, typename Sums, typename Add, typename Combine>
-Sums SumOverBlocks(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
-                   const Variables& v, const Sums& zero, Add&& add, Combine&& combine,
-                   bool with_jacobian = true) {
+// 1/2 sum r^2 over the problem at `v`, residuals only (no derivatives), summed batch by batch
+// in the fixed order of ReduceOverBatches.
+template <typename ModelType>
+double HalfSquaredSum(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
+                      const Variables& v) {
   const int n = fitter.FreeVariables();
   return ReduceOverBatches(
-      fitter, problem, v, zero,
-      [&](Sums& partial, const ceres::CostFunction& cost, int64_t first_row,
+      fitter, problem, v, 0.0,
+      [&](double& partial, const ceres::CostFunction& cost, int64_t,
           const std::vector<double*>& blocks, const std::vector<int>& sizes) {
-        // Per visit: a chunk's few batches reuse the allocator's recent blocks.
         Eigen::VectorXd residuals;
-        BlockJacobian jacobian;
         std::vector<std::vector<double>> scratch;
-        EvaluateBlock(&cost, blocks, sizes, n, &residuals, with_jacobian ? &jacobian : nullptr,
-                      &scratch);
-        add(partial, first_row, residuals, jacobian);
+        EvaluateBlock(&cost, blocks, sizes, n, &residuals, nullptr, &scratch);
+        partial += 0.5 * residuals.squaredNorm();
       },
-      combine);
+      [](double a, double b) { return a + b; });
 }
 
 // A = sum J_i^T J_i and B = sum J_i^T J_i e_i over residual rows i: the sandwich's two sums.
@@ -258,28 +253,9 @@ struct SandwichSums {
 // (one e_i >= 0 per row: a squared residual or the expectation of one).
 inline void AddSandwichSums(const BlockJacobian& jacobian, const Eigen::VectorXd& e,
                             Eigen::MatrixXd* a, Eigen::MatrixXd* b) {
-  // A batch has a few hundred rows of at most seven columns: a loop over the rows into the
-  // lower triangles beats a matrix product, whose packing dominates at this size.
-  const int n = static_cast<int>(jacobian.cols());
-  double sum_a[FitVariables::kMaxVariables][FitVariables::kMaxVariables] = {};
-  double sum_b[FitVariables::kMaxVariables][FitVariables::kMaxVariables] = {};
-  for (Eigen::Index row = 0; row < jacobian.rows(); ++row) {
-    const double* j = jacobian.row(row).data();
-    const double weight = e[row];
-    for (int p = 0; p < n; ++p) {
-      for (int q = 0; q <= p; ++q) {
-        const double product = j[p] * j[q];
-        sum_a[p][q] += product;
-        sum_b[p][q] += weight * product;
-      }
-    }
-  }
-  for (int p = 0; p < n; ++p) {
-    for (int q = 0; q <= p; ++q) {
-      (*a)(p, q) += sum_a[p][q];
-      (*b)(p, q) += sum_b[p][q];
-    }
-  }
+  const BlockJacobian weighted = e.cwiseSqrt().asDiagonal() * jacobian;  // sqrt(e) J
+  a->selfadjointView<Eigen::Lower>().rankUpdate(jacobian.transpose());
+  b->selfadjointView<Eigen::Lower>().rankUpdate(weighted.transpose());
 }
 
 // The sums of the normal equations over the residual rows i of `problem` at `v`:

@@ -281,8 +281,8 @@ LobeResolution ResolveLobe(LobeFrame frame, double exponent,
   lobe.nearest_off_peak_deg = std::numeric_limits<double>::infinity();
   if (frame == LobeFrame::kNormal) return lobe;
   // The offset acos(exp(-x / e)) grows with x: the nearest sample off the peak is the one of
-  // least x, so one offset is taken, not one a sample.
-  // Counts and a minimum: the same in any order, so the samples are scanned in parallel.
+  // least x, so one offset is taken, not one a sample. Counts and a minimum are the same in any
+  // order, so the samples are scanned in parallel.
   struct Scan {
     size_t peak = 0, flank = 0;
     double nearest_x = std::numeric_limits<double>::infinity();

@@ -186,7 +186,7 @@ FitResult RunFit(const ModelInfo& info, const PreparedSamples& prepared, const F
   // Information criterion from the plain weighted residuals (the loss's, not the robust one).
   double rss = 0;
   if (subsampled) {  // without the vector of every residual
-    rss = 2 * polish_detail::HalfSquaredSum(fitter, problem.get(), final_variables);
+    rss = 2 * HalfSquaredSum(fitter, problem.get(), final_variables);
   } else {
     std::vector<double> residuals;
     ceres::Problem::EvaluateOptions evaluate_options;

@@ -26,7 +26,6 @@
 
 #include "fitters/covariance.h"
 #include "fitters/model_fitter.h"
-#include "fitters/streamed_polish.h"
 
 namespace brdf::fitters {
 
@@ -55,7 +54,7 @@ class GramCost final : public ceres::CostFunction {
       at.shape[0] = parameters[2][0];
     }
     if (jacobians == nullptr) {
-      const double cost = polish_detail::HalfSquaredSum(fitter_, rows_.get(), at);
+      const double cost = HalfSquaredSum(fitter_, rows_.get(), at);
       for (int i = 0; i < n; ++i) residuals[i] = 0;
       residuals[n] = std::sqrt(2 * cost);
       return std::isfinite(cost);

@@ -55,8 +55,8 @@ class ParallelBatchCost : public ceres::CostFunction {
     return ok;
   }
 
-  // The batches, for sums that visit them one at a time (SumOverBlocks, covariance.h): a batch's
-  // residuals and Jacobian are a few tens of kB, a whole block's tens of MB.
+  // The batches, for sums that visit them one at a time (ReduceOverBatches, covariance.h): a
+  // batch's residuals and Jacobian are a few tens of kB, a whole block's tens of MB.
   size_t batch_count() const { return batches_.size(); }
   const ceres::CostFunction& batch(size_t b) const { return *batches_[b]; }
   // The batch's first row among this function's residuals.

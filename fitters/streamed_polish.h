@@ -4,13 +4,13 @@
 // Ceres' dense solvers store the whole Jacobian, rows x variables (3.3 M x 7 doubles, 184 MB,
 // for a MERL table) plus its scratch copies: more than the samples themselves. Every one of our
 // problems has at most seven variables, so the normal equations J^T J (7 x 7) and J^T r are all a
-// Gauss-Newton step needs, and they are sums over the rows (SumOverBlocks, covariance.h). This is
-// Levenberg-Marquardt on those sums, with Ceres' own step control (trust region radius mu,
-// (J^T J + diag(J^T J) / mu) delta = -J^T r, the radius grown by 1 / max(1/3, 1 - (2 rho - 1)^3)
-// on success and shrunk by a doubling factor on failure; Madsen, Nielsen & Tingleff 2004, §3.2)
-// and the same tolerances as ModelFitter::Solve. Steps are clipped to the variables' box, as
-// Ceres projects them. The start is the optimum on the stratified subsample, so it usually ends
-// after one or two steps. Deterministic: the sums run in a fixed order for any thread count.
+// Gauss-Newton step needs, and they are sums over the rows (NormalEquationSums, covariance.h). This
+// is Levenberg-Marquardt on those sums, with Ceres' own step control (trust region radius mu, (J^T
+// J + diag(J^T J) / mu) delta = -J^T r, the radius grown by 1 / max(1/3, 1 - (2 rho - 1)^3) on
+// success and shrunk by a doubling factor on failure; Madsen, Nielsen & Tingleff 2004, §3.2) and
+// the same tolerances as ModelFitter::Solve. Steps are clipped to the variables' box, as Ceres
+// projects them. The start is the optimum on the stratified subsample, so it usually ends after one
+// or two steps. Deterministic: the sums run in a fixed order for any thread count.
 #pragma once
 
 #include <ceres/ceres.h>
@@ -74,18 +74,6 @@ Variables Unflatten(const ModelFitter<ModelType>& fitter, const Eigen::VectorXd&
     v.shape[0] = x[k++];
   }
   return v;
-}
-
-// 1/2 sum r^2 over the problem at `v`, residuals only (no derivatives), in a fixed order.
-template <typename ModelType>
-double HalfSquaredSum(const ModelFitter<ModelType>& fitter, ceres::Problem* problem,
-                      const Variables& v) {
-  return SumOverBlocks(
-      fitter, problem, v, 0.0,
-      [](double& partial, int64_t, const Eigen::VectorXd& residuals, const BlockJacobian&) {
-        partial += 0.5 * residuals.squaredNorm();
-      },
-      [](double a, double b) { return a + b; }, /*with_jacobian=*/false);
 }
 
 // The normal equations at `v`, their triangles filled in.

@@ -235,11 +235,6 @@ float LobeSampler::MisPdf(const Vec3f& wi) const {
 void LobeSampler::MisPdfBatch(const float* x, const float* y, const float* z, int count,
                               float* mis_pdf) const {
   if (avx2_) return MisPdfsAvx2(x, y, z, count, mis_pdf);
-  MisPdfs(x, y, z, count, mis_pdf);
-}
-
-void LobeSampler::MisPdfs(const float* x, const float* y, const float* z, int count,
-                          float* mis_pdf) const {
   MisPdfsIn(x, y, z, count, mis_pdf);
 }
 

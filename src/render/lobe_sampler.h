@@ -106,7 +106,6 @@ class LobeSampler {
   // a second time for AVX2 (8 lanes; no FMA, so the same float operations and numbers as the
   // baseline's 4) and chosen at run time. (The power cosine's draws stay 4 lanes wide: GCC 12
   // compiles their loop scalar for AVX2.)
-  void MisPdfs(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
   BRDF_HDR_AVX2 void MisPdfsAvx2(const float* x, const float* y, const float* z, int count,
                                  float* mis_pdf) const;
   void MisPdfsIn(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
