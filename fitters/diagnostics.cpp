@@ -151,11 +151,11 @@ std::string ShapeText(const Model& model) {
   return what + shape.name + " = " + Format("%.4g", model.params()[shape.slot]);
 }
 
-void CheckLobeResolution(const PreparedSamples& prepared, FitResult* result) {
+void CheckLobeResolution(const Measurement& measurement, FitResult* result) {
   const Model& model = result->model;
   const double exponent = model.info().equivalent_exponent(model.params().data());
   const LobeFrame frame = model.Lobe().frame;
-  const LobeResolution lobe = ResolveLobe(frame, exponent, prepared.samples);
+  const LobeResolution lobe = ResolveLobe(frame, exponent, measurement);
   if (lobe.flank_samples > 0) return;
   std::string nearest = std::isfinite(lobe.nearest_off_peak_deg)
                             ? Format("%.3g", lobe.nearest_off_peak_deg) + " deg"
@@ -274,8 +274,12 @@ void CheckResidualWarnings(const Measurement& measurement, FitResult* result) {
 
 }  // namespace
 
-LobeResolution ResolveLobe(LobeFrame frame, double exponent,
-                           const std::vector<FitSample>& samples) {
+namespace {
+
+// ResolveLobe over the samples that `counts` accepts (FitSample and Sample both carry wi, wo).
+template <typename SampleType, typename Counts>
+LobeResolution ResolveLobeOver(LobeFrame frame, double exponent,
+                               const std::vector<SampleType>& samples, Counts counts) {
   LobeResolution lobe;
   lobe.half_width_deg = std::acos(std::exp(-0.5 / exponent)) * kRadToDeg;
   lobe.nearest_off_peak_deg = std::numeric_limits<double>::infinity();
@@ -291,6 +295,7 @@ LobeResolution ResolveLobe(LobeFrame frame, double exponent,
       tbb::blocked_range<size_t>(0, samples.size()), Scan{},
       [&](const tbb::blocked_range<size_t>& range, Scan partial) {
         for (size_t k = range.begin(); k < range.end(); ++k) {
+          if (!counts(samples[k])) continue;
           const double x = LobeExponentTerm(frame, exponent, samples[k].wi, samples[k].wo);
           if (x < kFlankStart) {
             ++partial.peak;
@@ -316,15 +321,23 @@ LobeResolution ResolveLobe(LobeFrame frame, double exponent,
   return lobe;
 }
 
+}  // namespace
+
+LobeResolution ResolveLobe(LobeFrame frame, double exponent,
+                           const std::vector<FitSample>& samples) {
+  return ResolveLobeOver(frame, exponent, samples, [](const FitSample&) { return true; });
+}
+
+LobeResolution ResolveLobe(LobeFrame frame, double exponent, const Measurement& measurement) {
+  return ResolveLobeOver(frame, exponent, measurement.samples, UsableForFit);
+}
+
 ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement) {
   ResidualCheck check;
   check.has_sigma = measurement.has_sigma();
   const std::vector<Sample>& samples = measurement.samples;
   const auto is_present = [](const Sample& sample) {
     return !sample.missing && sample.value.allFinite();
-  };
-  const auto is_usable = [&](const Sample& sample) {
-    return is_present(sample) && sample.wi.z() > 0 && sample.wo.z() > 0;
   };
   // Chunks of the file's samples, in parallel: the largest value (for the rounding floor) and
   // each chunk's count of usable samples, whose running sum places its scores in file order.
@@ -339,7 +352,7 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
           for (size_t k = chunk * kSamplesPerChunk; k < end; ++k) {
             if (!is_present(samples[k])) continue;
             partial = std::max(partial, samples[k].value.abs().maxCoeff());
-            usable += is_usable(samples[k]);
+            usable += UsableForFit(samples[k]);
           }
           first_usable[chunk + 1] = usable;
         }
@@ -357,7 +370,7 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
     size_t u = first_usable[chunk];
     for (size_t k = chunk * kSamplesPerChunk; k < end; ++k) {
       const Sample& sample = samples[k];
-      if (!is_usable(sample)) continue;
+      if (!UsableForFit(sample)) continue;
       const Rgb f = model.Eval(sample.wi, sample.wo);
       for (int c = 0; c < 3; ++c) {
         double difference = sample.value[c] - f[c];
@@ -416,8 +429,7 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
   return check;
 }
 
-void AppendFitDiagnostics(const Measurement& measurement, const PreparedSamples& prepared,
-                          FitResult* result) {
+void AppendFitDiagnostics(const Measurement& measurement, FitResult* result) {
   if (!result->converged) {
     result->warnings.push_back(
         "not converged: the final solve stopped without meeting its "
@@ -426,7 +438,7 @@ void AppendFitDiagnostics(const Measurement& measurement, const PreparedSamples&
   }
   CheckIdentifiability(result);
   if (result->model.info().has_lobe() && !LobeVanished(*result)) {
-    CheckLobeResolution(prepared, result);
+    CheckLobeResolution(measurement, result);
   }
   CheckCoverage(measurement, result);
   CheckResidualWarnings(measurement, result);

@@ -37,6 +37,9 @@ struct LobeResolution {
   double nearest_off_peak_deg = 0;
 };
 LobeResolution ResolveLobe(LobeFrame frame, double exponent, const std::vector<FitSample>& samples);
+// The same over a measurement's samples that a fit uses (UsableForFit): what the fit's
+// prepared samples give, without keeping them.
+LobeResolution ResolveLobe(LobeFrame frame, double exponent, const Measurement& measurement);
 
 // Statistics of the fitted model's residuals against the measurement's own values.
 struct ResidualCheck {
@@ -53,9 +56,8 @@ struct ResidualCheck {
 };
 ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement);
 
-// Appends every applicable warning to result->warnings. `prepared` are the samples the fit
-// used (PrepareSamples of `measurement`).
-void AppendFitDiagnostics(const Measurement& measurement, const PreparedSamples& prepared,
-                          FitResult* result);
+// Appends every applicable warning to result->warnings, from the fitted model and the
+// measurement it was fitted to: the fit's prepared samples need not be kept for them.
+void AppendFitDiagnostics(const Measurement& measurement, FitResult* result);
 
 }  // namespace brdf::fitters

@@ -262,10 +262,10 @@ FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string&
   return result;
 }
 
-void FinishFit(const Measurement& measurement, const PreparedSamples& prepared, FitResult* result) {
+void FinishFit(const Measurement& measurement, FitResult* result) {
   const auto start = std::chrono::steady_clock::now();
   CheckFitEnergy(result);
-  AppendFitDiagnostics(measurement, prepared, result);  // docs/stability.md
+  AppendFitDiagnostics(measurement, result);  // docs/stability.md
   result->time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -274,9 +274,10 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
   options.Validate();
   FindModel(model_name);  // an unknown name is a usage error before any work
   const auto start = std::chrono::steady_clock::now();
-  const PreparedSamples prepared = PrepareSamples(measurement);
+  PreparedSamples prepared = PrepareSamples(measurement);
   FitResult result = FitPreparedSamples(prepared, model_name, options);
-  FinishFit(measurement, prepared, &result);
+  Release(&prepared);
+  FinishFit(measurement, &result);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -105,10 +105,10 @@ struct SubsampleOptimum {
   int iterations = 0;
 };
 
-// The whole fit: PrepareSamples, FitPreparedSamples, FinishFit.
+// The whole fit: PrepareSamples, FitPreparedSamples, FinishFit (the prepared samples are released
+// before it: the diagnostics read the measurement).
 FitResult FitModel(const Measurement& measurement, const std::string& model_name,
                    const FitOptions& options);
-
 // The fit alone, on PrepareSamples(measurement): parameters, standard errors,
 // metrics and BIC, without the energy check and the diagnostics. `optimum`, when given and
 // found, is where the polish starts (it must come from a fit of the same model and options
@@ -116,6 +116,6 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
 FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string& model_name,
                              const FitOptions& options, SubsampleOptimum* optimum = nullptr);
 // The energy check (energy_check.h) and the warnings (diagnostics.h) of a fit.
-void FinishFit(const Measurement& measurement, const PreparedSamples& prepared, FitResult* result);
+void FinishFit(const Measurement& measurement, FitResult* result);
 
 }  // namespace brdf::fitters

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
@@ -68,20 +69,21 @@ Loss ParseLoss(const std::string& name) { return ParseEnum(kLossNames, name, "lo
 
 const char* LossName(Loss loss) { return NameOf(kLossNames, loss); }
 
+void Release(PreparedSamples* prepared) {
+  prepared->samples = std::vector<FitSample>();
+  ReturnFreePages();
+}
+
 PreparedSamples PrepareSamples(const Measurement& measurement) {
   PreparedSamples prepared;
   std::vector<size_t> source_index;
-  const auto usable = [](const Sample& sample) {
-    return !sample.missing && sample.value.isFinite().all() && sample.wi.z() > 0 &&
-           sample.wo.z() > 0;
-  };
   // Sized once: growing a vector of a million samples by doubling would hold the old and the
   // new copy at once and clear pages for both.
   const std::vector<Sample>& source = measurement.samples;
   const size_t count = tbb::parallel_reduce(
       tbb::blocked_range<size_t>(0, source.size()), size_t{0},
       [&](const tbb::blocked_range<size_t>& range, size_t partial) {
-        for (size_t k = range.begin(); k < range.end(); ++k) partial += usable(source[k]);
+        for (size_t k = range.begin(); k < range.end(); ++k) partial += UsableForFit(source[k]);
         return partial;
       },
       [](size_t a, size_t b) { return a + b; });
@@ -90,7 +92,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   if (per_sample_columns) source_index.reserve(count);
   for (size_t k = 0; k < measurement.samples.size(); ++k) {
     const Sample& sample = measurement.samples[k];
-    if (!usable(sample)) {
+    if (!UsableForFit(sample)) {
       ++(sample.missing ? prepared.skipped_missing : prepared.skipped_invalid);
       continue;
     }
@@ -107,20 +109,19 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   }
 
   // Solid-angle weights.
-  if (measurement.tabulated != nullptr) {
-    const TabulatedBrdf& table = *measurement.tabulated;
+  // A table's cells, or samples on the MERL grid written by another format.
+  std::shared_ptr<const CellMeasure> cells = measurement.cell_measure;
+  if (cells == nullptr && !measurement.equal_weighting() && IsMerlGrid(measurement)) {
+    cells = MerlCellMeasure();
+  }
+  if (cells != nullptr) {
     tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
-      samples[k].weight = table.CellMeasure(samples[k].wi, samples[k].wo);
+      samples[k].weight = cells->Measure(samples[k].wi, samples[k].wo);
     });
-    prepared.weighting = table.CellMeasureName();
+    prepared.weighting = cells->Name();
   } else if (measurement.equal_weighting()) {
     prepared.weighting = "equal (a designed schedule: each sample stands for itself)";
     prepared.designed = true;
-  } else if (IsMerlGrid(measurement)) {
-    tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
-      samples[k].weight = MerlTable::CellMeasure(samples[k].wi, samples[k].wo);
-    });
-    prepared.weighting = "MERL cell measure 4 cos(theta_d) dw_h dw_d";
   } else {
     std::map<std::tuple<long long, long long, long long>, std::vector<size_t>> groups;
     for (size_t k = 0; k < samples.size(); ++k) {
@@ -178,23 +179,29 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
 std::vector<FitSample> Subsample(const std::vector<FitSample>& samples, size_t max_samples,
                                  uint64_t seed) {
   if (max_samples == 0 || samples.size() <= max_samples) return samples;
-  std::vector<size_t> order(samples.size());
-  std::iota(order.begin(), order.end(), 0);
+  // 32-bit indices, and the luminance taken where it is compared rather than stored: this runs
+  // while all the samples are held, at the fit's peak of memory, where 8-byte indices and a
+  // stored luminance would add 16 bytes a sample.
+  if (samples.size() > std::numeric_limits<uint32_t>::max()) {
+    throw ComputeError("Subsample: more than 2^32 samples");
+  }
+  std::vector<uint32_t> order(samples.size());
+  std::iota(order.begin(), order.end(), uint32_t{0});
   const size_t peak_count = std::min(samples.size() / 100, max_samples / 2);
   // Peak: the brightest samples, all kept with their own weight.
-  std::vector<double> luminance(samples.size());
-  for (size_t k = 0; k < samples.size(); ++k) luminance[k] = Luminance(samples[k].value);
-  std::nth_element(order.begin(), order.begin() + peak_count, order.end(), [&](size_t a, size_t b) {
-    const double la = luminance[a], lb = luminance[b];
-    return la > lb || (la == lb && a < b);
-  });
+  std::nth_element(order.begin(), order.begin() + peak_count, order.end(),
+                   [&](uint32_t a, uint32_t b) {
+                     const double la = Luminance(samples[a].value);
+                     const double lb = Luminance(samples[b].value);
+                     return la > lb || (la == lb && a < b);
+                   });
   // The rest in ascending index order (a deterministic order for the draw), rebuilt in one
   // pass instead of sorted.
   std::vector<bool> in_peak(samples.size(), false);
   for (size_t k = 0; k < peak_count; ++k) in_peak[order[k]] = true;
   size_t next = peak_count;
   for (size_t index = 0; index < samples.size(); ++index) {
-    if (!in_peak[index]) order[next++] = index;
+    if (!in_peak[index]) order[next++] = static_cast<uint32_t>(index);
   }
   std::vector<FitSample> subset;
   subset.reserve(max_samples);

@@ -45,6 +45,11 @@ inline Rgb LossTarget(Loss loss, const Rgb& value, double cos_theta_i) {
   return value;
 }
 
+// Whether a fit uses a measurement's sample: present, finite, both directions above the horizon.
+inline bool UsableForFit(const Sample& sample) {
+  return !sample.missing && sample.value.allFinite() && sample.wi.z() > 0 && sample.wo.z() > 0;
+}
+
 struct PreparedSamples {
   std::vector<FitSample> samples;
   size_t skipped_missing = 0;  // flagged missing
@@ -52,6 +57,11 @@ struct PreparedSamples {
   std::string weighting;       // how the solid-angle weights were found
   bool designed = false;       // a designed schedule's (equal weights; may crowd onto a lobe)
 };
+
+// Frees the samples (the counts and names stay) and hands their pages back to the system: what
+// follows a fit reads the measurement, and its buffers would otherwise be placed on fresh pages
+// beside these (a MERL table's samples are 114 MB).
+void Release(PreparedSamples* prepared);
 
 // Selects the usable samples and weights each by the solid angle it represents. Weights:
 //  * MERL grid: the exact measure of the cell, 4 cos(theta_d) sin(theta_h) sin(theta_d)

@@ -26,7 +26,8 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
                        Selection* selection, std::vector<FitResult>* all_fits) {
   options.Validate();
   const auto start = std::chrono::steady_clock::now();
-  const PreparedSamples prepared = PrepareSamples(measurement);
+  PreparedSamples prepared = PrepareSamples(measurement);
+  const size_t sample_count = prepared.samples.size();
   // A large table: the candidates compete on the fit's own stratified subsample (BIC on a
   // subsample is still BIC, and every candidate sees the same samples), and only the winner is
   // polished on every sample. Small files, and callers that keep every fit, fit every candidate
@@ -40,6 +41,7 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
     subsample.designed = prepared.designed;
   }
   const PreparedSamples& contest = on_subsample ? subsample : prepared;
+  const size_t contest_count = contest.samples.size();
   // The candidates are fitted side by side: each fit's own parallel loops leave cores idle
   // between their solver steps, and no fit depends on another or on the thread count, so the
   // results, kept in candidate order, are those of fitting them one after another (an error is
@@ -78,12 +80,14 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
     }
   }
   if (on_subsample) {
+    subsample.samples = std::vector<FitSample>();
     fits[best] = FitPreparedSamples(prepared, fits[best].model.name(), options, &optima[best]);
   }
+  Release(&prepared);
   // The energy check and the diagnostics cost more than many fits of a small file: only the
   // chosen fit gets them, unless the caller keeps every fit.
   for (size_t k = 0; k < fits.size(); ++k) {
-    if (k == best || all_fits != nullptr) FinishFit(measurement, prepared, &fits[k]);
+    if (k == best || all_fits != nullptr) FinishFit(measurement, &fits[k]);
   }
   const FitResult& chosen = fits[best];
   selection->chosen = chosen.model.name();
@@ -116,9 +120,9 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
   }
   if (on_subsample) {
     selection->reason += " (BIC and rmse of every candidate on the same " +
-                         std::to_string(subsample.samples.size()) +
+                         std::to_string(contest_count) +
                          "-sample stratified subsample; the chosen model then fitted to all " +
-                         std::to_string(prepared.samples.size()) + ")";
+                         std::to_string(sample_count) + ")";
   }
   FitResult result = fits[best];
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -76,6 +76,35 @@ TEST(FitDiagnostics, LobeNarrowerThanTheSampleSpacingIsReported) {
   EXPECT_NEAR(lobe.half_width_deg, 180 / kPi / std::sqrt(1e4), 1e-3);
 }
 
+TEST(FitDiagnostics, LobeResolutionOverTheMeasurementIsThatOfTheFitsSamples) {
+  // The diagnostics read the measurement, not the fit's prepared samples (freed before them):
+  // the samples a fit skips (missing, NaN, at or below the horizon) must not count.
+  const Model truth = ParseModel("phong:rho_d=0.3:rho_s=0.5:n=300");
+  SyntheticOptions options;
+  options.theta_step_deg = 5;
+  options.phi_step_deg = 15;
+  Measurement measurement = SynthesizeOnHemisphere(truth, options);
+  Sample on_peak;  // exactly on the mirror direction: would count as a peak sample
+  on_peak.wi = SphericalDirection(DegToRad(30), 0);
+  on_peak.wo = SphericalDirection(DegToRad(30), kPi);
+  on_peak.value = truth.Eval(on_peak.wi, on_peak.wo);
+  Sample missing = on_peak, not_finite = on_peak, below = on_peak;
+  missing.missing = true;
+  not_finite.value[1] = std::nan("");
+  below.wi = Vec3(on_peak.wi.x(), on_peak.wi.y(), -on_peak.wi.z());
+  for (const Sample& skipped : {missing, not_finite, below}) measurement.samples.push_back(skipped);
+  const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement);
+  ASSERT_EQ(prepared.samples.size() + 3, measurement.samples.size());
+  for (LobeFrame frame : {LobeFrame::kMirror, LobeFrame::kHalfVector}) {
+    const fitters::LobeResolution from_samples = fitters::ResolveLobe(frame, 300, prepared.samples);
+    const fitters::LobeResolution from_measurement = fitters::ResolveLobe(frame, 300, measurement);
+    EXPECT_GT(from_samples.peak_samples, 0u);
+    EXPECT_EQ(from_measurement.peak_samples, from_samples.peak_samples);
+    EXPECT_EQ(from_measurement.flank_samples, from_samples.flank_samples);
+    EXPECT_EQ(from_measurement.nearest_off_peak_deg, from_samples.nearest_off_peak_deg);
+  }
+}
+
 TEST(FitDiagnostics, LobeResolutionCountsTheFlankExactly) {
   // Phong lobe of exponent 100 (sigma = 5.73 deg) at normal incidence; detectors on rings at
   // offsets 1, 4, 10 and 20 deg from the mirror direction (the normal). The flank is

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "fitters/fit_samples.h"
 #include "io/formats.h"
 #include "models/model_string.h"
 #include "test_util.h"
@@ -129,6 +130,36 @@ TEST(Merl, AnalyticTableSurvivesWriteAndRead) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(sample.value[c], expected[c], 1e-12 * expected[c]);
   }
   EXPECT_EQ(present, grid.samples.size());
+}
+
+TEST(Merl, TheCellMeasureWeighsTheFitWithoutTheEvaluator) {
+  // A fit reads the cell measure, not the table's values: `brdf fit` drops the evaluator after
+  // reading, and the weights must not change.
+  ScratchDir dir;
+  const std::string path = dir.File("analytic.binary");
+  WriteMeasurement(TabulateOnGrid(ParseModel("blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.5:m=50")),
+                   path);
+  Measurement read = ReadMeasurement(path);
+  ASSERT_NE(read.tabulated, nullptr);
+  ASSERT_NE(read.cell_measure, nullptr);
+  const fitters::PreparedSamples with_table = fitters::PrepareSamples(read);
+  read.tabulated.reset();
+  const fitters::PreparedSamples without = fitters::PrepareSamples(read);
+  EXPECT_EQ(without.weighting, with_table.weighting);
+  EXPECT_NE(without.weighting.find("MERL cell measure"), std::string::npos) << without.weighting;
+  ASSERT_EQ(without.samples.size(), with_table.samples.size());
+  double sum = 0;
+  for (size_t k = 0; k < without.samples.size(); ++k) {
+    ASSERT_EQ(without.samples[k].weight, with_table.samples[k].weight) << k;
+    sum += MerlTable::CellMeasure(without.samples[k].wi, without.samples[k].wo);
+  }
+  // The weights are the cell measures normalized to mean 1.
+  const double mean = sum / without.samples.size();
+  for (size_t k : {size_t{0}, without.samples.size() / 2, without.samples.size() - 1}) {
+    const fitters::FitSample& sample = without.samples[k];
+    EXPECT_NEAR(sample.weight, MerlTable::CellMeasure(sample.wi, sample.wo) / mean,
+                1e-12 * sample.weight);
+  }
 }
 
 TEST(Merl, NegativeValuesAreMissingNotData) {

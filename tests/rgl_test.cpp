@@ -13,6 +13,7 @@
 #include "core/angles.h"
 #include "core/colour.h"
 #include "core/errors.h"
+#include "fitters/fit_samples.h"
 #include "io/formats.h"
 #include "io/rgl_bsdf.h"
 #include "io/tensor_file.h"
@@ -159,6 +160,19 @@ TEST(RglBsdf, EvaluationAtGridNodesIsTheStoredValueTimesTheJacobianFactor) {
 
 // The measurement's samples are those nodes: same directions, the file's values divided by
 // cos(theta_o).
+TEST(RglBsdf, TheCellMeasureWeighsTheFitWithoutTheEvaluator) {
+  Measurement read = ReadMeasurement(DataPath("rgl-bsdf/paper_white_rgb.bsdf"));
+  ASSERT_NE(read.cell_measure, nullptr);
+  const fitters::PreparedSamples with_table = fitters::PrepareSamples(read);
+  read.tabulated.reset();
+  const fitters::PreparedSamples without = fitters::PrepareSamples(read);
+  EXPECT_EQ(without.weighting, with_table.weighting);
+  ASSERT_EQ(without.samples.size(), with_table.samples.size());
+  for (size_t k = 0; k < without.samples.size(); ++k) {
+    ASSERT_EQ(without.samples[k].weight, with_table.samples[k].weight) << k;
+  }
+}
+
 TEST(RglBsdf, SamplesAreTheGridNodes) {
   const Measurement measurement = ReadMeasurement(DataPath(kPaper));
   EXPECT_EQ(measurement.format, "rgl-bsdf");

@@ -102,7 +102,7 @@ std::string FitOneFile(const BatchOptions& options, const fitters::FitOptions& f
                        const std::string& path) {
   nlohmann::json result;
   try {
-    const Measurement measurement = ReadMeasurement(path, options.fit.ToReadOptions());
+    const Measurement measurement = ReadForFit(path, options.fit);
     const fitters::ModelFit model_fit =
         fitters::FitModelOrAuto(measurement, options.fit.model, fit_options);
     result["report"] = fitters::FitReportJson(model_fit.fit, path, model_fit.selection_or_null());

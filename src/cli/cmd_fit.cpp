@@ -39,8 +39,7 @@ Command AddFitCommand(CLI::App& parent) {
 
   return {app, [options]() {
             const fitters::FitOptions fit_options = options->fit.ToFitOptions(options->threads);
-            const Measurement measurement =
-                ReadMeasurement(options->path, options->fit.ToReadOptions());
+            const Measurement measurement = ReadForFit(options->path, options->fit);
 
             const fitters::ModelFit model_fit =
                 fitters::FitModelOrAuto(measurement, options->fit.model, fit_options);

@@ -1,5 +1,7 @@
 #include "cli/fit_options.h"
 
+#include "core/huge_pages.h"
+#include "io/formats.h"
 #include "models/registry.h"
 
 namespace brdf::cli {
@@ -8,6 +10,13 @@ std::string ModelNames() {
   std::string names;
   for (const ModelInfo& info : ModelRegistry()) names += (names.empty() ? "" : ", ") + info.name;
   return names;
+}
+
+Measurement ReadForFit(const std::string& path, const FitArguments& arguments) {
+  Measurement measurement = ReadMeasurement(path, arguments.ToReadOptions());
+  measurement.tabulated.reset();
+  ReturnFreePages();
+  return measurement;
 }
 
 void AddFitOptions(CLI::App* app, FitArguments* arguments) {

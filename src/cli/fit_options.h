@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "core/measurement.h"
 #include "fitters/fit_arguments.h"
 
 namespace brdf::cli {
@@ -17,5 +18,11 @@ void AddFitOptions(CLI::App* app, FitArguments* arguments);
 
 // "lambert, phong, ..., ggx, beckmann": the registry's names, for help texts.
 std::string ModelNames();
+
+// Reads a measurement for `brdf fit` and `brdf batch`, which evaluate nothing between its
+// samples: without its table evaluator (Measurement::tabulated; a fit reads the samples and the
+// cell measure, while a MERL table's evaluator holds a second, 35 MB copy of the values), whose
+// pages go back to the system before the fit's peak of memory.
+Measurement ReadForFit(const std::string& path, const FitArguments& arguments);
 
 }  // namespace brdf::cli

@@ -5,6 +5,9 @@
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 namespace brdf {
 
@@ -19,6 +22,12 @@ void AdviseHugePages(const void* data, size_t bytes) {
 #else
   (void)data;
   (void)bytes;
+#endif
+}
+
+void ReturnFreePages() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
 #endif
 }
 

@@ -1,4 +1,4 @@
-// Large buffers backed by transparent huge pages.
+// Large buffers' pages: backed by transparent huge pages, and handed back when freed.
 //
 // A MERL table's fit holds a few buffers of 30-120 MB, each written once from the start. With
 // the kernel's 4 KiB pages every first touch of a page is a fault (the kernel zeroes and charges
@@ -23,5 +23,10 @@ void ReserveHugePages(std::vector<T>* buffer, size_t count) {
   buffer->reserve(count);
   AdviseHugePages(buffer->data(), buffer->capacity() * sizeof(T));
 }
+
+// Hands the free pages of the heap back to the system (glibc's malloc_trim; elsewhere nothing).
+// `brdf` keeps freed memory for reuse (src/cli/main.cpp); after it lets go of a large buffer
+// that no later one of its size would reuse, this lowers the peak that follows.
+void ReturnFreePages();
 
 }  // namespace brdf

@@ -36,10 +36,18 @@ class TabulatedBrdf {
   virtual std::string Describe() const = 0;
   // Short name of the evaluation, e.g. "MERL table lookup", for a preview's summary line.
   virtual std::string LookupName() const = 0;
-  // The measure dwi dwo (sr^2) of the table cell that the reader's sample at (wi, wo) stands
-  // for, the solid-angle weight of a fit; and a few words saying what it is.
-  virtual double CellMeasure(const Vec3& wi, const Vec3& wo) const = 0;
-  virtual std::string CellMeasureName() const = 0;
+};
+
+// The measure dwi dwo (sr^2) of the table cell that a dense table's sample at (wi, wo) stands
+// for: the solid-angle weight a fit gives it. A capability of its own beside the evaluator, set
+// by the same readers: it needs the table's grid, not its values, so a consumer that only
+// weighs the samples (a fit) can let the evaluator go and keep this.
+class CellMeasure {
+ public:
+  virtual ~CellMeasure() = default;
+  virtual double Measure(const Vec3& wi, const Vec3& wo) const = 0;
+  // A few words saying what it is, for the fit report's weighting line.
+  virtual std::string Name() const = 0;
 };
 
 struct Measurement {
@@ -52,6 +60,8 @@ struct Measurement {
   std::vector<double> weight;  // empty, or one weight per sample
   // Set by readers of dense tables: evaluates between the samples (see TabulatedBrdf).
   std::shared_ptr<const TabulatedBrdf> tabulated;
+  // Set with `tabulated`, by the same readers: the measure of each sample's cell.
+  std::shared_ptr<const CellMeasure> cell_measure;
 
   bool has_sigma() const { return !sigma.empty(); }
   bool has_weight() const { return !weight.empty(); }

@@ -39,22 +39,30 @@ class MerlEvaluator : public TabulatedBrdf {
            " cells missing count as zero";
   }
   std::string LookupName() const override { return "MERL table lookup"; }
-  double CellMeasure(const Vec3& wi, const Vec3& wo) const override {
-    return MerlTable::CellMeasure(wi, wo);
-  }
-  std::string CellMeasureName() const override {
-    return "MERL cell measure 4 cos(theta_d) dw_h dw_d";
-  }
 
  private:
   std::shared_ptr<const MerlTable> table_;
   int64_t missing_ = 0;
 };
 
+// The grid's measure alone: it holds none of the table's values.
+class MerlGridMeasure : public CellMeasure {
+ public:
+  double Measure(const Vec3& wi, const Vec3& wo) const override {
+    return MerlTable::CellMeasure(wi, wo);
+  }
+  std::string Name() const override { return "MERL cell measure 4 cos(theta_d) dw_h dw_d"; }
+};
+
 }  // namespace
 
 std::shared_ptr<const TabulatedBrdf> MerlTabulated(std::shared_ptr<const MerlTable> table) {
   return std::make_shared<const MerlEvaluator>(std::move(table));
+}
+
+std::shared_ptr<const CellMeasure> MerlCellMeasure() {
+  static const std::shared_ptr<const CellMeasure> measure = std::make_shared<MerlGridMeasure>();
+  return measure;
 }
 
 double MerlTable::CellMeasure(const Vec3& wi, const Vec3& wo) {
@@ -314,6 +322,7 @@ Measurement ReadMerl(const std::string& path, const ReadOptions&) {
   auto table = std::make_shared<const MerlTable>(MerlTable::Read(path));
   Measurement measurement = table->ToMeasurement();
   measurement.tabulated = MerlTabulated(std::move(table));
+  measurement.cell_measure = MerlCellMeasure();
   return measurement;
 }
 

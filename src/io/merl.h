@@ -74,5 +74,7 @@ class MerlTable {
 // The table as a reader's evaluator (DESIGN §4): nearest-cell lookup (Lookup), NaN in missing
 // cells; the cell measure above. The description counts the missing cells.
 std::shared_ptr<const TabulatedBrdf> MerlTabulated(std::shared_ptr<const MerlTable> table);
+// The grid's cell measure (MerlTable::CellMeasure) as the capability readers hand out with it.
+std::shared_ptr<const CellMeasure> MerlCellMeasure();
 
 }  // namespace brdf

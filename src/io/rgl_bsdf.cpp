@@ -303,7 +303,7 @@ RglBrdf::Node RglBrdf::GridNode(int phi_index, int theta_index, int row, int col
   return node;
 }
 
-double RglBrdf::CellMeasure(const Vec3& wi, const Vec3& wo) const {
+double RglBrdf::Measure(const Vec3& wi, const Vec3& wo) const {
   if (wi.z() <= 0.0 || wo.z() <= 0.0) return 0.0;
   // The incidence band: from the midpoint to the previous theta_i node to the midpoint to the
   // next (the last band as wide above its node as below, up to the horizon).
@@ -347,7 +347,7 @@ double RglBrdf::CellMeasure(const Vec3& wi, const Vec3& wo) const {
   return incidence_measure * outgoing_measure;
 }
 
-std::string RglBrdf::CellMeasureName() const {
+std::string RglBrdf::Name() const {
   return "RGL grid cell measure (warped node cell solid angle times the theta_i band)";
 }
 
@@ -438,6 +438,7 @@ Measurement ReadRglBsdf(const std::string& path, const ReadOptions& options) {
                                  "clipped to 0";
   metadata["evaluation"] = brdf->Describe();
   measurement.tabulated = brdf;
+  measurement.cell_measure = brdf;
   return measurement;
 }
 

@@ -32,7 +32,7 @@
 
 namespace brdf {
 
-class RglBrdf : public TabulatedBrdf {
+class RglBrdf : public TabulatedBrdf, public CellMeasure {
  public:
   // Validates the fields (ranks, dtypes, shapes that agree, finite values, non-empty vndf
   // slices). Throws ByteError naming the field's table entry or the offending value.
@@ -50,8 +50,8 @@ class RglBrdf : public TabulatedBrdf {
   Rgb EvalCosine(const Vec3& wi, const Vec3& wo) const;
   std::string Describe() const override;
   std::string LookupName() const override;
-  double CellMeasure(const Vec3& wi, const Vec3& wo) const override;
-  std::string CellMeasureName() const override;
+  double Measure(const Vec3& wi, const Vec3& wo) const override;  // CellMeasure
+  std::string Name() const override;
 
   // One node of the stored grid: incidence (phi_index, theta_index), grid position (row, col).
   struct Node {

@@ -19,15 +19,15 @@ namespace {
 // Fit reports are small; anything larger is not one.
 constexpr int64_t kMaxReportBytes = int64_t{16} << 20;
 
-class AnalyticTable : public TabulatedBrdf {
+class AnalyticTable : public TabulatedBrdf, public CellMeasure {
  public:
   explicit AnalyticTable(Model model) : model_(std::move(model)) {}
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override { return model_.Eval(wi, wo); }
   std::string Describe() const override { return "the analytic model " + model_.ToString(); }
   std::string LookupName() const override { return "analytic " + model_.name(); }
   // A model has no cells: each evaluation stands for itself.
-  double CellMeasure(const Vec3&, const Vec3&) const override { return 1.0; }
-  std::string CellMeasureName() const override { return "none (an analytic model)"; }
+  double Measure(const Vec3&, const Vec3&) const override { return 1.0; }
+  std::string Name() const override { return "none (an analytic model)"; }
 
  private:
   Model model_;
@@ -99,7 +99,9 @@ Measurement ModelAsMeasurement(const Model& model, const std::string& spec) {
   measurement.format = "model";
   measurement.source = spec;
   measurement.metadata["model"] = model.ToString();
-  measurement.tabulated = std::make_shared<AnalyticTable>(model);
+  auto table = std::make_shared<AnalyticTable>(model);
+  measurement.tabulated = table;
+  measurement.cell_measure = table;
   return measurement;
 }
 
