@@ -31,7 +31,7 @@ int ReportError(const std::string& message, int status) {
     // Rank 0 knows this failure too: it prints it once and ends the job with `status`. The other
     // ranks end with 0, because mpirun kills every process still running at the first non-zero
     // exit, and rank 0 may then be cut off while it removes its temporary output or finalizes
-    // MPI (seen as a segmentation fault of rank 0). The job's status is rank 0's either way.
+    // MPI. The job's status is rank 0's either way.
     return 0;
   }
   std::cerr << "brdf: " + message + "\n";

@@ -2,9 +2,9 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <climits>
 #include <condition_variable>
@@ -67,6 +67,12 @@ int StatusOf(const std::exception_ptr& error, std::string* message) {
 
 // A rank's own items, computed on a thread of their own (and TBB's workers under it) while the
 // main thread talks to the other ranks. Finished results wait in a queue for the main thread.
+//
+// A run stops between items, never inside one: cancelling TBB's group would reach the parallel
+// loops nested in an item's computation, which then return with part of their work undone, and
+// the item would go on with what they never wrote (a failure on another rank crashed this rank
+// that way). So an item that has started finishes; the ones not started are skipped; and an
+// item's exception is kept here rather than let through TBB, which would cancel the group.
 class LocalRun {
  public:
   LocalRun(std::vector<size_t> items, const std::function<std::string(size_t)>& compute,
@@ -94,39 +100,41 @@ class LocalRun {
     }
     return finished_;
   }
-  void Cancel() { context_.cancel_group_execution(); }
+  void Cancel() { stop_ = true; }
   // The first exception of an item, once Take returned true.
   std::exception_ptr error() const { return error_; }
 
  private:
-  void Finish(size_t item) {
-    std::string result = compute_(item);
-    if (g_size > 1 && result.size() > static_cast<size_t>(INT_MAX) - sizeof(uint64_t)) {
-      throw ComputeError("the result of work item " + std::to_string(item) + " is " +
-                         std::to_string(result.size()) +
-                         " bytes, above the 2 GiB an MPI message holds; split the work finer");
+  // Computes one item unless the run has stopped; the first exception stops the run.
+  void Finish(size_t item) noexcept {
+    if (stop_) return;
+    try {
+      std::string result = compute_(item);
+      if (g_size > 1 && result.size() > static_cast<size_t>(INT_MAX) - sizeof(uint64_t)) {
+        throw ComputeError("the result of work item " + std::to_string(item) + " is " +
+                           std::to_string(result.size()) +
+                           " bytes, above the 2 GiB an MPI message holds; split the work finer");
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      queue_.emplace_back(item, std::move(result));
+      ready_.notify_one();
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+      stop_ = true;
     }
-    std::lock_guard<std::mutex> lock(mutex_);
-    queue_.emplace_back(item, std::move(result));
-    ready_.notify_one();
   }
 
   void Run(bool in_parallel) {
-    try {
-      if (in_parallel) {
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, items_.size(), 1),
-            [this](const tbb::blocked_range<size_t>& range) {
-              for (size_t k = range.begin(); k != range.end(); ++k) Finish(items_[k]);
-            },
-            tbb::simple_partitioner(), context_);
-      } else {
-        for (size_t k = 0; k < items_.size() && !context_.is_group_execution_cancelled(); ++k) {
-          Finish(items_[k]);
-        }
-      }
-    } catch (...) {
-      error_ = std::current_exception();
+    if (in_parallel) {
+      tbb::parallel_for(
+          tbb::blocked_range<size_t>(0, items_.size(), 1),
+          [this](const tbb::blocked_range<size_t>& range) {
+            for (size_t k = range.begin(); k != range.end(); ++k) Finish(items_[k]);
+          },
+          tbb::simple_partitioner());
+    } else {
+      for (size_t item : items_) Finish(item);
     }
     std::lock_guard<std::mutex> lock(mutex_);
     finished_ = true;
@@ -135,7 +143,7 @@ class LocalRun {
 
   const std::vector<size_t> items_;
   const std::function<std::string(size_t)>& compute_;
-  tbb::task_group_context context_;
+  std::atomic<bool> stop_{false};
   std::mutex mutex_;
   std::condition_variable ready_;
   std::deque<std::pair<size_t, std::string>> queue_;
