@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "core/errors.h"
@@ -89,6 +90,10 @@ void BrightRow(const float* in, int64_t count, float t, float scale, float* out)
 // Destination rows per task of the fused bright pass and step down; each task bright-passes
 // the 2 * kRowsPerTask + 2 source rows it needs (the two shared with a neighbour twice).
 constexpr int kRowsPerTask = 16;
+// Destination row y reads source rows 2y - 1 .. 2y + 2 (clamped), and row y + 1 two of them
+// again: a task keeps its last four bright rows, source row sy in slot sy mod 4, so they stay
+// in cache.
+constexpr int kBrightSlots = 4;
 
 }  // namespace
 
@@ -110,22 +115,19 @@ Image BrightPassDown(const Image& image, double threshold, double exposure) {
   const int width = image.width, height = image.height;
   Image result((width + 1) / 2, (height + 1) / 2, 0.0f);  // every float written
   const int tasks = (result.height + kRowsPerTask - 1) / kRowsPerTask;
+  const int64_t row_floats = int64_t{width} * Image::kChannels;
   tbb::parallel_for(0, tasks, [&](int task) {
     const int y0 = task * kRowsPerTask, y1 = std::min(result.height, y0 + kRowsPerTask);
-    // Source rows 2 y0 - 1 .. 2 y1, clamped to the image.
-    const int first = std::max(0, 2 * y0 - 1), last = std::min(height - 1, 2 * y1);
-    std::vector<float> bright(int64_t{last - first + 1} * width * Image::kChannels);
-    for (int sy = first; sy <= last; ++sy) {
-      const float* in = image.pixel(0, sy);
-      float* out = bright.data() + int64_t{sy - first} * width * Image::kChannels;
-      BrightRow(in, width, t, scale, out);
-    }
+    // Every float is written before it is read: no zero-filling.
+    const std::unique_ptr<float[]> bright(new float[kBrightSlots * row_floats]);
+    const auto slot = [&](int sy) { return bright.get() + (sy % kBrightSlots) * row_floats; };
+    int next = std::max(0, 2 * y0 - 1);  // the first source row not yet bright-passed
     for (int y = y0; y < y1; ++y) {
-      const float* rows[4];
-      for (int k = 0; k < 4; ++k) {
-        const int sy = std::clamp(2 * y - 1 + k, 0, height - 1);
-        rows[k] = bright.data() + int64_t{sy - first} * width * Image::kChannels;
+      for (const int last = std::min(height - 1, 2 * y + 2); next <= last; ++next) {
+        BrightRow(image.pixel(0, next), width, t, scale, slot(next));
       }
+      const float* rows[4];
+      for (int k = 0; k < 4; ++k) rows[k] = slot(std::clamp(2 * y - 1 + k, 0, height - 1));
       DualFilterDownRow(rows, width, height, y, result.pixel(0, y));
     }
   });
