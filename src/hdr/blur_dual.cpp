@@ -263,24 +263,30 @@ Image Up(const Image& source, int width, int height) {
 
 void DualFilterDownRow(const float* const rows[4], int source_width, int source_height, int y,
                        float* out) {
+  DualFilterDownRow(rows, source_width, source_height, y, 0, (source_width + 1) / 2, out);
+}
+
+void DualFilterDownRow(const float* const rows[4], int source_width, int source_height, int y,
+                       int begin, int end, float* out) {
   const std::vector<Tap>& taps = DownTaps();
   const int width = (source_width + 1) / 2;
   // Destination pixels whose taps all lie inside: 2x - 1 >= 0 and 2x + 2 < source_width.
   const bool row_inside = 2 * y - 1 >= 0 && 2 * y + 2 < source_height;
   const int inside_begin = row_inside ? std::min(width, 1) : width;
   const int inside_end = row_inside ? std::max(inside_begin, (source_width - 1) / 2) : width;
-  for (int x = 0; x < inside_begin; ++x) {
+  for (int x = begin; x < std::min(end, inside_begin); ++x) {
     ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
   }
   const ResolvedTaps<kDownTaps> resolved(rows, taps, -1);
-  int x = inside_begin;
+  int x = std::max(begin, inside_begin);
+  const int stop = std::max(x, std::min(end, inside_end));
 #if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, inside_end, out);
+  if (HdrAvx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, stop, out);
 #endif
-  for (; x < inside_end; ++x) {
+  for (; x < stop; ++x) {
     StorePixel(resolved.Sum(int64_t{2 * x} * kC), out + int64_t{x} * kC);
   }
-  for (x = inside_end; x < width; ++x) {
+  for (x = std::max(begin, inside_end); x < end; ++x) {
     ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
   }
 }

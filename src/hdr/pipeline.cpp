@@ -229,7 +229,14 @@ class ExposedRows {
 ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   options.Validate();
   ToneResult result;
-  result.scene = MeasureSceneLuminance(image, options.delta);
+  const bool blooming = options.bloom != BlurKind::kNone && options.bloom_strength > 0.0;
+  // The row segments' channel peaks let the fused bright pass skip what they prove dark.
+  std::vector<float> peaks;
+  if (blooming && options.bloom == BlurKind::kDual) {
+    peaks.resize(PeakFloats(image.width, image.height));
+  }
+  result.scene =
+      MeasureSceneLuminance(image, options.delta, peaks.empty() ? nullptr : peaks.data());
   result.exposure = options.exposure ? *options.exposure : AutoExposure(result.scene, options.key);
   if (!options.exposure) {
     const std::string warning = BlackPixelWarning(result.scene);
@@ -238,11 +245,11 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
 
   Image bloom;
   bool bloom_is_half = false;
-  const bool blooming = options.bloom != BlurKind::kNone && options.bloom_strength > 0.0;
   if (blooming) {
     if (options.bloom == BlurKind::kDual) {
-      bloom = DualFilterFromHalf(BrightPassDown(image, options.bloom_threshold, result.exposure),
-                                 DualFilterLevelsForSigma(options.bloom_sigma));
+      bloom = DualFilterFromHalf(
+          BrightPassDown(image, options.bloom_threshold, result.exposure, peaks.data()),
+          DualFilterLevelsForSigma(options.bloom_sigma));
       bloom_is_half = true;
     } else {
       bloom = Blur(BrightPass(image, options.bloom_threshold, result.exposure), options.bloom,
