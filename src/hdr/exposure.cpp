@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "core/deterministic_reduce.h"
@@ -363,10 +364,11 @@ SceneLuminance MeasureRows(int width, int height, double delta, const Fold& fold
   const LogSum total = DeterministicReduce(
       int64_t{height}, rows_per_chunk, LogSum{},
       [&](int64_t begin, int64_t end, LogSum sum) {
-        std::vector<float> scratch(2 * int64_t{width} * Image::kChannels);
+        // Written before it is read (the row callbacks' contract): not zero-filled.
+        const std::unique_ptr<float[]> scratch(new float[2 * int64_t{width} * Image::kChannels]);
         LaneSums lanes;
         for (int64_t y = begin; y < end; ++y) {
-          fold(static_cast<int>(y), scratch.data(), delta_f, &lanes);
+          fold(static_cast<int>(y), scratch.get(), delta_f, &lanes);
         }
         const LogSum chunk = Join(lanes);
         sum.log_sum += chunk.log_sum;

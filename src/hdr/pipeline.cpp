@@ -292,16 +292,20 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   ForToneOperator(result.mapping, [&](const auto& map) {
     [[maybe_unused]] constexpr ToneOperator kOperator = std::decay_t<decltype(map)>::kToneOperator;
     tbb::parallel_for(0, tasks, [&](int task) {
-      std::vector<float> scratch(2 * row_floats);
+      // Every float of these rows is written before it is read: not zero-filled (a vector's
+      // zero-filling, per task, cost as much as a pass over the frame).
+      const std::unique_ptr<float[]> scratch_rows(new float[2 * row_floats]);
+      float* const scratch = scratch_rows.get();
       // One row tone mapped: RGB, or (AVX2) three planes.
-      std::vector<float> mapped(int64_t{width} * 3);
+      const std::unique_ptr<float[]> mapped_row(new float[int64_t{width} * 3]);
+      float* const mapped = mapped_row.get();
       const int y1 = std::min(image.height, (task + 1) * kRowsPerTask);
       for (int y = task * kRowsPerTask; y < y1; ++y) {
         uint8_t* out = display.rgb.data() + int64_t{y} * width * 3;
 #if BRDF_HDR_HAS_AVX2_PATHS
         if constexpr (kOperator != ToneOperator::kExposure) {
           if (avx2) {
-            float* const red = mapped.data();
+            float* const red = mapped;
             float* const green = red + width;
             float* const blue = green + width;
             // The kept row, or the exposure (and bloom) made on the way from the input.
@@ -312,16 +316,16 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
               x = ToneMapRowAvx2<kOperator, false>(row, nullptr, 1.0f, 0.0f, width, map.key_scale(),
                                                    map.white(), red, green, blue);
             } else {
-              const ExposedRowSource source = rows.Sources(y, scratch.data() + row_floats);
+              const ExposedRowSource source = rows.Sources(y, scratch + row_floats);
               x = ToneMapRowAvx2<kOperator, true>(source.in, source.add, rows.scale(),
                                                   rows.strength(), width, map.key_scale(),
                                                   map.white(), red, green, blue);
               if (x < width) {  // the last pixels through the scalar path
                 const int64_t at = int64_t{x} * Image::kChannels;
                 ExposeRow(source.in + at, source.add == nullptr ? nullptr : source.add + at,
-                          width - x, rows.scale(), rows.strength(), scratch.data() + at);
+                          width - x, rows.scale(), rows.strength(), scratch + at);
               }
-              row = scratch.data();
+              row = scratch;
             }
             for (; x < width; ++x) {
               float rgb[3];
@@ -333,12 +337,12 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
           }
         }
 #endif
-        const float* row = kept ? kept.get() + y * row_floats
-                                : rows.Row(y, scratch.data(), scratch.data() + row_floats);
+        const float* row =
+            kept ? kept.get() + y * row_floats : rows.Row(y, scratch, scratch + row_floats);
         for (int x = 0; x < width; ++x) {
-          map(row + int64_t{x} * Image::kChannels, mapped.data() + 3 * x);
+          map(row + int64_t{x} * Image::kChannels, mapped + 3 * x);
         }
-        quantize.EncodeMany(mapped.data(), int64_t{width} * 3, out);
+        quantize.EncodeMany(mapped, int64_t{width} * 3, out);
       }
     });
   });
