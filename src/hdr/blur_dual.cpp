@@ -170,6 +170,35 @@ class ResolvedTaps {
     }
     return _mm256_add_ps(even, odd);
   }
+  // SumTwo at the M bases base + 2 j pixels, j < M, each with SumTwo's arithmetic (the same
+  // bits): one broadcast of each weight and one look-up of each tap's row serve M vectors,
+  // which a loop of SumTwo calls spent as many loads on as on the pixels.
+  template <int M>
+  BRDF_HDR_AVX2 void SumTwoMany(int64_t base, __m256 sums[M]) const {
+    __m256 even[M], odd[M];
+    for (int j = 0; j < M; ++j) even[j] = odd[j] = _mm256_setzero_ps();
+    int k = 0;
+    for (; k + 1 < N; k += 2) {
+      const __m256 weight_even = _mm256_set1_ps(weight_[k]);
+      const __m256 weight_odd = _mm256_set1_ps(weight_[k + 1]);
+      const float* const even_row = row_[k] + (offset_[k] + base);
+      const float* const odd_row = row_[k + 1] + (offset_[k + 1] + base);
+      for (int j = 0; j < M; ++j) {
+        even[j] = _mm256_add_ps(even[j],
+                                _mm256_mul_ps(weight_even, _mm256_loadu_ps(even_row + 2 * j * kC)));
+        odd[j] =
+            _mm256_add_ps(odd[j], _mm256_mul_ps(weight_odd, _mm256_loadu_ps(odd_row + 2 * j * kC)));
+      }
+    }
+    if (k < N) {
+      const __m256 weight = _mm256_set1_ps(weight_[k]);
+      const float* const row = row_[k] + (offset_[k] + base);
+      for (int j = 0; j < M; ++j) {
+        even[j] = _mm256_add_ps(even[j], _mm256_mul_ps(weight, _mm256_loadu_ps(row + 2 * j * kC)));
+      }
+    }
+    for (int j = 0; j < M; ++j) sums[j] = _mm256_add_ps(even[j], odd[j]);
+  }
   // Whether each pair of taps (2i, 2i + 1) reads neighbouring pixels of one row, the second
   // to the right: then SumPaired() is Sum() with one load per pair.
   bool Paired() const {
@@ -217,6 +246,18 @@ BRDF_HDR_AVX2 int DownInsideAvx2(const ResolvedTaps<kDownTaps>& taps, int x, int
 // pixel not written.
 BRDF_HDR_AVX2 int UpInsideAvx2(const ResolvedTaps<kUpTaps>& even, const ResolvedTaps<kUpTaps>& odd,
                                int x, int end, float* out) {
+  constexpr int kVectors = 4;  // sixteen pixels a step, then four
+  for (; x + 4 * kVectors - 1 < end; x += 4 * kVectors) {
+    const int64_t base = int64_t{x / 2} * kC;
+    __m256 even_pairs[kVectors], odd_pairs[kVectors];
+    even.SumTwoMany<kVectors>(base, even_pairs);
+    odd.SumTwoMany<kVectors>(base, odd_pairs);
+    for (int j = 0; j < kVectors; ++j) {
+      float* target = out + int64_t{x + 4 * j} * kC;
+      _mm256_storeu_ps(target, _mm256_permute2f128_ps(even_pairs[j], odd_pairs[j], 0x20));
+      _mm256_storeu_ps(target + 2 * kC, _mm256_permute2f128_ps(even_pairs[j], odd_pairs[j], 0x31));
+    }
+  }
   for (; x + 3 < end; x += 4) {
     const int64_t base = int64_t{x / 2} * kC;
     const __m256 even_pair = even.SumTwo(base), odd_pair = odd.SumTwo(base);
