@@ -137,20 +137,25 @@ Image BrightPassDown(const Image& image, double threshold, double exposure, cons
     // Every float is written before it is read: no zero-filling.
     const std::unique_ptr<float[]> bright(new float[kBrightSlots * row_floats]);
     const auto slot = [&](int sy) { return bright.get() + (sy % kBrightSlots) * row_floats; };
-    // Whether segment s of the row in slot k is proven dark: dark[k * segments + s].
+    // Whether segment s of the row in slot k is proven dark: dark[k * segments + s]; and
+    // whether that segment of the slot holds zeros already (from an earlier dark row).
     std::vector<char> dark(int64_t{kBrightSlots} * segments);
+    std::vector<char> zeroed(int64_t{kBrightSlots} * segments);
     int next = std::max(0, 2 * y0 - 1);  // the first source row not yet bright-passed
     for (int y = y0; y < y1; ++y) {
       for (const int last = std::min(height - 1, 2 * y + 2); next <= last; ++next) {
         char* row_dark = dark.data() + (next % kBrightSlots) * segments;
+        char* row_zeroed = zeroed.data() + (next % kBrightSlots) * segments;
         for (int s = 0; s < segments; ++s) {
           const int x0 = s * kPeakSegment, x1 = std::min(width, x0 + kPeakSegment);
           float* out = slot(next) + int64_t{x0} * Image::kChannels;
           row_dark[s] = peaks != nullptr && ProvenDark(PeakAt(peaks, width, next, s), t, scale);
-          if (row_dark[s]) {  // what the bright pass gives there: zeros
-            std::fill(out, out + int64_t{x1 - x0} * Image::kChannels, 0.0f);
-          } else {
+          if (!row_dark[s]) {
             BrightRow(image.pixel(x0, next), x1 - x0, t, scale, out);
+            row_zeroed[s] = false;
+          } else if (!row_zeroed[s]) {  // what the bright pass gives there: zeros
+            std::fill(out, out + int64_t{x1 - x0} * Image::kChannels, 0.0f);
+            row_zeroed[s] = true;
           }
         }
       }

@@ -293,10 +293,16 @@ Image Down(const Image& source) {
   return result;
 }
 
+// The doubling step from `source` into `target`, whose size it keeps and every float of which
+// it writes (its old content is not read).
+void UpInto(const Image& source, Image* target) {
+  tbb::parallel_for(0, target->height,
+                    [&](int y) { DualFilterUpRow(source, target->width, y, target->pixel(0, y)); });
+}
+
 Image Up(const Image& source, int width, int height) {
-  Image result(width, height, 0.0f);  // every float written
-  tbb::parallel_for(0, height,
-                    [&](int y) { DualFilterUpRow(source, width, y, result.pixel(0, y)); });
+  Image result(width, height, 0.0f);
+  UpInto(source, &result);
   return result;
 }
 
@@ -391,7 +397,11 @@ Image DualFilterFromHalf(Image half, int levels) {
   for (int level = 1; level < levels; ++level) chain.push_back(Down(chain.back()));
   Image result = std::move(chain.back());
   for (int level = levels - 2; level >= 0; --level) {
-    result = Up(result, chain[level].width, chain[level].height);
+    // Level `level` has been stepped down from: its storage takes the step back up (no
+    // zero-filled allocation).
+    Image target = std::move(chain[level]);
+    UpInto(result, &target);
+    result = std::move(target);
   }
   return result;
 }
