@@ -143,8 +143,9 @@ BRDF_HDR_AVX2 inline void FlushPeaks(__m256 peak[3], float* target) {
 // x0+4..x0+7, each group as AddFour does it (the library's log for a whole group of four with
 // an argument that is not a normal float). Returns the first pixel not folded.
 //
-// With kExpose, the row is made on the way from `in` (and `add`) as ExposeRow does it, and
-// stored to `keep` when that is not null; otherwise `in` is the row and the rest unused.
+// With kExpose, the row is made on the way from `in` (and `add`) as ExposeRow does it, and its
+// red, green and blue stored to the planes keep[x], keep[width + x], keep[2 width + x] when
+// `keep` is not null; otherwise `in` is the row and the rest unused.
 // `peaks` (not null): the row's segment peaks (exposure.h) raised to the largest red, green and
 // blue of the pixels folded, as RaisePeaks does it.
 template <bool kExpose>
@@ -192,13 +193,12 @@ BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, flo
           exposed = _mm256_add_ps(exposed, _mm256_mul_ps(strength8, bloom));
         }
         quad[k] = _mm256_blend_ps(exposed, quad[k], 0x88);  // alpha kept
-        if (keep != nullptr) {
-          _mm_storeu_ps(keep + at + 4 * k, _mm256_castps256_ps128(quad[k]));
-          _mm_storeu_ps(keep + at + 16 + 4 * k, _mm256_extractf128_ps(quad[k], 1));
-        }
       }
     }
     TransposeQuads(quad, channel);
+    if (kExpose && keep != nullptr) {  // the exposed red, green and blue as planes
+      for (int c = 0; c < 3; ++c) _mm256_storeu_ps(keep + int64_t{c} * width + x0, channel[c]);
+    }
     if (peaks != nullptr) {
       const int segment = x0 / kPeakSegment;  // eight pixels never straddle two segments
       if (segment != pending) {
@@ -428,9 +428,9 @@ SceneLuminance MeasureExposedLuminanceByRow(
   return MeasureRows(
       width, height, delta, [&](int y, float* scratch, float delta_f, LaneSums* lanes) {
         const ExposedRowSource source = row(y, scratch);
-        // The exposed row is made where it is kept, or in the scratch row's second half.
-        float* exposed =
-            source.keep != nullptr ? source.keep : scratch + int64_t{width} * Image::kChannels;
+        // The exposed pixels the vector path leaves (all of them without it) are made in the
+        // scratch row's second half, and copied to the kept planes from there.
+        float* exposed = scratch + int64_t{width} * Image::kChannels;
         int x0 = 0;
 #if BRDF_HDR_HAS_AVX2_PATHS
         if (HdrAvx2Enabled()) {
@@ -440,6 +440,13 @@ SceneLuminance MeasureExposedLuminanceByRow(
 #endif
         ExposeRowFrom(source.in, source.add, x0, width, scale, strength, exposed);
         AddRow(exposed, x0, width, delta_f, lanes);
+        if (source.keep != nullptr) {
+          for (int x = x0; x < width; ++x) {
+            for (int c = 0; c < 3; ++c) {
+              source.keep[int64_t{c} * width + x] = exposed[int64_t{x} * Image::kChannels + c];
+            }
+          }
+        }
       });
 }
 

@@ -51,8 +51,10 @@ SceneLuminance MeasureSceneLuminanceByRow(
 // The statistics of an exposed (and bloomed) image that exists only a row at a time: row y
 // has RGB = scale * in + strength * add (`add` null: no bloom), alpha that of `in`, as
 // ExposeRow() makes it. `row(y, scratch)` returns row y's `in` and `add` (`scratch` has room
-// for one RGBA row, e.g. for a bloom row made on the fly) and where to keep the exposed row
-// (null: nowhere). Summed like MeasureSceneLuminanceByRow, with the same result.
+// for one RGBA row, e.g. for a bloom row made on the fly) and where to keep the exposed row's
+// red, green and blue (null: nowhere): three planes of `width` floats, keep[x],
+// keep[width + x], keep[2 width + x]. Summed like MeasureSceneLuminanceByRow, with the same
+// result.
 struct ExposedRowSource {
   const float* in = nullptr;
   const float* add = nullptr;
