@@ -163,6 +163,48 @@ TEST(HdrAvx2, BrightPassAndBlursAreTheScalarBits) {
   }
 }
 
+// The fused bright pass skips the row segments the statistics pass's peaks prove dark: the
+// same bytes as without peaks, on both paths, at thresholds where some segments are dark and
+// some not (NaN and infinite channels inside the dark ones).
+TEST(HdrAvx2, BrightPassDownSkipsOnlyWhatThePeaksProveDark) {
+  const int width = 333, height = 41;  // six segments, the last one partial
+  for (bool extremes : {false, true}) {
+    Image scene = EdgeScene(width, height, extremes);
+    for (int y = 0; y < height; ++y) {
+      for (int x = 0; x < width; ++x) {
+        float* p = scene.pixel(x, y);
+        // Bright specks only in columns 100..179 of rows 10..19.
+        const bool window = x >= 100 && x < 180 && y >= 10 && y < 20;
+        if (!window && p[0] == 200.0f) p[0] = p[1] = 0.03f;
+      }
+    }
+    scene.pixel(20, 5)[1] = std::numeric_limits<float>::quiet_NaN();
+    scene.pixel(300, 30)[0] = -std::numeric_limits<float>::infinity();
+    for (double threshold : {0.0, 1.0, 50.0}) {
+      const auto [available, paths] = BothPaths([&] {
+        std::vector<float> peaks(PeakFloats(width, height));
+        MeasureSceneLuminance(scene, 1e-4, peaks.data());
+        return std::make_pair(BrightPassDown(scene, threshold, 0.7, peaks.data()).rgba, peaks);
+      });
+      if (!available) GTEST_SKIP() << "no AVX2 on this processor";
+      const std::vector<float> plain = BrightPassDown(scene, threshold, 0.7).rgba;
+      EXPECT_TRUE(SameBits(paths.first.first, plain)) << threshold;
+      EXPECT_TRUE(SameBits(paths.second.first, plain)) << threshold;
+      EXPECT_EQ(paths.first.second, paths.second.second);  // the peaks (a zero's sign aside)
+      if (threshold == 1.0) {  // the skip is reached, and so is the bright pass
+        int dark = 0;
+        const std::vector<float>& peaks = paths.second.second;
+        for (int64_t i = 0; i < static_cast<int64_t>(peaks.size()); i += 3) {
+          const float exposed[3] = {peaks[i] * 0.7f, peaks[i + 1] * 0.7f, peaks[i + 2] * 0.7f};
+          dark += PixelLuminance(exposed) <= 1.0f;
+        }
+        EXPECT_GT(dark, 0);
+        EXPECT_LT(dark, static_cast<int>(peaks.size() / 3));
+      }
+    }
+  }
+}
+
 TEST(HdrAvx2, PipelineGivesTheScalarBytes) {
   for (const auto& [width, height] :
        {std::pair{97, 61}, std::pair{64, 48}, std::pair{5, 3}, std::pair{1031, 41}}) {

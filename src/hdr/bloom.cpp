@@ -4,10 +4,12 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <memory>
 #include <vector>
 
 #include "core/errors.h"
 #include "hdr/blur.h"
+#include "hdr/exposure.h"
 #include "hdr/simd.h"
 
 #if BRDF_HDR_HAS_AVX2_PATHS
@@ -86,9 +88,23 @@ void BrightRow(const float* in, int64_t count, float t, float scale, float* out)
   }
 }
 
+// Whether BrightPixel gives black for every pixel whose red, green and blue are at most
+// peak[0], peak[1], peak[2]: with scale > 0, scaling, the weighted sum and their rounding
+// are monotone, so each pixel's exposed luminance is at most the peaks' (or NaN, also black).
+// A NaN bound proves nothing.
+bool ProvenDark(const float* peak, float t, float scale) {
+  if (!(scale > 0.0f)) return false;
+  const float exposed[3] = {peak[0] * scale, peak[1] * scale, peak[2] * scale};
+  return PixelLuminance(exposed) <= t;
+}
+
 // Destination rows per task of the fused bright pass and step down; each task bright-passes
 // the 2 * kRowsPerTask + 2 source rows it needs (the two shared with a neighbour twice).
 constexpr int kRowsPerTask = 16;
+// Destination row y reads source rows 2y - 1 .. 2y + 2 (clamped), and row y + 1 two of them
+// again: a task keeps its last four bright rows, source row sy in slot sy mod 4, so they stay
+// in cache.
+constexpr int kBrightSlots = 4;
 
 }  // namespace
 
@@ -104,29 +120,74 @@ Image BrightPass(const Image& image, double threshold, double exposure) {
   return bright;
 }
 
-Image BrightPassDown(const Image& image, double threshold, double exposure) {
+Image BrightPassDown(const Image& image, double threshold, double exposure, const float* peaks) {
   const float t = static_cast<float>(threshold);
   const float scale = static_cast<float>(exposure);
   const int width = image.width, height = image.height;
   Image result((width + 1) / 2, (height + 1) / 2, 0.0f);  // every float written
   const int tasks = (result.height + kRowsPerTask - 1) / kRowsPerTask;
+  const int64_t row_floats = int64_t{width} * Image::kChannels;
+  // Source segment s holds the pixels [64 s, 64 s + 64) of a row (exposure.h), destination
+  // segment s the pixels [32 s, 32 s + 32), which read the source columns 64 s - 1 .. 64 s + 64:
+  // segments s - 1, s and s + 1 of four rows.
+  const int segments = PeakSegments(width);
+  constexpr int kHalfSegment = kPeakSegment / 2;
   tbb::parallel_for(0, tasks, [&](int task) {
     const int y0 = task * kRowsPerTask, y1 = std::min(result.height, y0 + kRowsPerTask);
-    // Source rows 2 y0 - 1 .. 2 y1, clamped to the image.
-    const int first = std::max(0, 2 * y0 - 1), last = std::min(height - 1, 2 * y1);
-    std::vector<float> bright(int64_t{last - first + 1} * width * Image::kChannels);
-    for (int sy = first; sy <= last; ++sy) {
-      const float* in = image.pixel(0, sy);
-      float* out = bright.data() + int64_t{sy - first} * width * Image::kChannels;
-      BrightRow(in, width, t, scale, out);
-    }
+    // Every float is written before it is read: no zero-filling.
+    const std::unique_ptr<float[]> bright(new float[kBrightSlots * row_floats]);
+    const auto slot = [&](int sy) { return bright.get() + (sy % kBrightSlots) * row_floats; };
+    // Whether segment s of the row in slot k is proven dark: dark[k * segments + s]; and
+    // whether that segment of the slot holds zeros already (from an earlier dark row).
+    std::vector<char> dark(int64_t{kBrightSlots} * segments);
+    std::vector<char> zeroed(int64_t{kBrightSlots} * segments);
+    int next = std::max(0, 2 * y0 - 1);  // the first source row not yet bright-passed
     for (int y = y0; y < y1; ++y) {
+      for (const int last = std::min(height - 1, 2 * y + 2); next <= last; ++next) {
+        char* row_dark = dark.data() + (next % kBrightSlots) * segments;
+        char* row_zeroed = zeroed.data() + (next % kBrightSlots) * segments;
+        for (int s = 0; s < segments; ++s) {
+          const int x0 = s * kPeakSegment, x1 = std::min(width, x0 + kPeakSegment);
+          float* out = slot(next) + int64_t{x0} * Image::kChannels;
+          row_dark[s] = peaks != nullptr && ProvenDark(PeakAt(peaks, width, next, s), t, scale);
+          if (!row_dark[s]) {
+            BrightRow(image.pixel(x0, next), x1 - x0, t, scale, out);
+            row_zeroed[s] = false;
+          } else if (!row_zeroed[s]) {  // what the bright pass gives there: zeros
+            std::fill(out, out + int64_t{x1 - x0} * Image::kChannels, 0.0f);
+            row_zeroed[s] = true;
+          }
+        }
+      }
       const float* rows[4];
+      const char* rows_dark[4];
       for (int k = 0; k < 4; ++k) {
         const int sy = std::clamp(2 * y - 1 + k, 0, height - 1);
-        rows[k] = bright.data() + int64_t{sy - first} * width * Image::kChannels;
+        rows[k] = slot(sy);
+        rows_dark[k] = dark.data() + (sy % kBrightSlots) * segments;
       }
-      DualFilterDownRow(rows, width, height, y, result.pixel(0, y));
+      const auto zero = [&](int s) {  // destination segment s: the taps' sums of zeros
+        for (int k = 0; k < 4; ++k) {
+          for (int n = std::max(0, s - 1); n <= std::min(segments - 1, s + 1); ++n) {
+            if (!rows_dark[k][n]) return false;
+          }
+        }
+        return true;
+      };
+      float* out = result.pixel(0, y);
+      for (int s = 0; s < segments;) {
+        const bool zeros = zero(s);
+        int end = s + 1;  // a run of segments alike, made in one call
+        while (end < segments && zero(end) == zeros) ++end;
+        const int x0 = s * kHalfSegment, x1 = std::min(result.width, end * kHalfSegment);
+        if (zeros) {
+          std::fill(out + int64_t{x0} * Image::kChannels, out + int64_t{x1} * Image::kChannels,
+                    0.0f);
+        } else {
+          DualFilterDownRow(rows, width, height, y, x0, x1, out);
+        }
+        s = end;
+      }
     }
   });
   return result;

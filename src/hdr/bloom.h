@@ -13,7 +13,12 @@ namespace brdf {
 Image BrightPass(const Image& image, double threshold, double exposure = 1.0);
 // The bright pass fused into the first half-resolution step of the dual filter: equal to
 // DualFilterDown(BrightPass(image, threshold, exposure)) without the full-size bright image.
-Image BrightPassDown(const Image& image, double threshold, double exposure);
+// `peaks`, if not null, are the image's segment peaks from MeasureSceneLuminance (exposure.h):
+// row segments they prove dark at this threshold and exposure are not bright-passed (their
+// zeros are known), and destination pixels that read dark segments alone are zeros; the bytes
+// are the same.
+Image BrightPassDown(const Image& image, double threshold, double exposure,
+                     const float* peaks = nullptr);
 
 // image.rgb += strength * bloom.rgb (alpha untouched); both of one size.
 void AddBloom(Image* image, const Image& bloom, double strength);

@@ -55,6 +55,9 @@ Image DualFilterDown(const Image& source);
 // Writes (source_width + 1) / 2 RGBA pixels.
 void DualFilterDownRow(const float* const rows[4], int source_width, int source_height, int y,
                        float* out);
+// The pixels [begin, end) of that row alone (each pixel's arithmetic is the same).
+void DualFilterDownRow(const float* const rows[4], int source_width, int source_height, int y,
+                       int begin, int end, float* out);
 // From the half-resolution image: L - 1 more steps down and back up to the half resolution.
 Image DualFilterFromHalf(Image half, int levels);
 // Row y of the doubling step from `source` to a `width`-pixel-wide row: `width` RGBA pixels.

@@ -170,6 +170,35 @@ class ResolvedTaps {
     }
     return _mm256_add_ps(even, odd);
   }
+  // SumTwo at the M bases base + 2 j pixels, j < M, each with SumTwo's arithmetic (the same
+  // bits): one broadcast of each weight and one look-up of each tap's row serve M vectors,
+  // which a loop of SumTwo calls spent as many loads on as on the pixels.
+  template <int M>
+  BRDF_HDR_AVX2 void SumTwoMany(int64_t base, __m256 sums[M]) const {
+    __m256 even[M], odd[M];
+    for (int j = 0; j < M; ++j) even[j] = odd[j] = _mm256_setzero_ps();
+    int k = 0;
+    for (; k + 1 < N; k += 2) {
+      const __m256 weight_even = _mm256_set1_ps(weight_[k]);
+      const __m256 weight_odd = _mm256_set1_ps(weight_[k + 1]);
+      const float* const even_row = row_[k] + (offset_[k] + base);
+      const float* const odd_row = row_[k + 1] + (offset_[k + 1] + base);
+      for (int j = 0; j < M; ++j) {
+        even[j] = _mm256_add_ps(even[j],
+                                _mm256_mul_ps(weight_even, _mm256_loadu_ps(even_row + 2 * j * kC)));
+        odd[j] =
+            _mm256_add_ps(odd[j], _mm256_mul_ps(weight_odd, _mm256_loadu_ps(odd_row + 2 * j * kC)));
+      }
+    }
+    if (k < N) {
+      const __m256 weight = _mm256_set1_ps(weight_[k]);
+      const float* const row = row_[k] + (offset_[k] + base);
+      for (int j = 0; j < M; ++j) {
+        even[j] = _mm256_add_ps(even[j], _mm256_mul_ps(weight, _mm256_loadu_ps(row + 2 * j * kC)));
+      }
+    }
+    for (int j = 0; j < M; ++j) sums[j] = _mm256_add_ps(even[j], odd[j]);
+  }
   // Whether each pair of taps (2i, 2i + 1) reads neighbouring pixels of one row, the second
   // to the right: then SumPaired() is Sum() with one load per pair.
   bool Paired() const {
@@ -217,6 +246,18 @@ BRDF_HDR_AVX2 int DownInsideAvx2(const ResolvedTaps<kDownTaps>& taps, int x, int
 // pixel not written.
 BRDF_HDR_AVX2 int UpInsideAvx2(const ResolvedTaps<kUpTaps>& even, const ResolvedTaps<kUpTaps>& odd,
                                int x, int end, float* out) {
+  constexpr int kVectors = 4;  // sixteen pixels a step, then four
+  for (; x + 4 * kVectors - 1 < end; x += 4 * kVectors) {
+    const int64_t base = int64_t{x / 2} * kC;
+    __m256 even_pairs[kVectors], odd_pairs[kVectors];
+    even.SumTwoMany<kVectors>(base, even_pairs);
+    odd.SumTwoMany<kVectors>(base, odd_pairs);
+    for (int j = 0; j < kVectors; ++j) {
+      float* target = out + int64_t{x + 4 * j} * kC;
+      _mm256_storeu_ps(target, _mm256_permute2f128_ps(even_pairs[j], odd_pairs[j], 0x20));
+      _mm256_storeu_ps(target + 2 * kC, _mm256_permute2f128_ps(even_pairs[j], odd_pairs[j], 0x31));
+    }
+  }
   for (; x + 3 < end; x += 4) {
     const int64_t base = int64_t{x / 2} * kC;
     const __m256 even_pair = even.SumTwo(base), odd_pair = odd.SumTwo(base);
@@ -252,10 +293,16 @@ Image Down(const Image& source) {
   return result;
 }
 
+// The doubling step from `source` into `target`, whose size it keeps and every float of which
+// it writes (its old content is not read).
+void UpInto(const Image& source, Image* target) {
+  tbb::parallel_for(0, target->height,
+                    [&](int y) { DualFilterUpRow(source, target->width, y, target->pixel(0, y)); });
+}
+
 Image Up(const Image& source, int width, int height) {
-  Image result(width, height, 0.0f);  // every float written
-  tbb::parallel_for(0, height,
-                    [&](int y) { DualFilterUpRow(source, width, y, result.pixel(0, y)); });
+  Image result(width, height, 0.0f);
+  UpInto(source, &result);
   return result;
 }
 
@@ -263,24 +310,30 @@ Image Up(const Image& source, int width, int height) {
 
 void DualFilterDownRow(const float* const rows[4], int source_width, int source_height, int y,
                        float* out) {
+  DualFilterDownRow(rows, source_width, source_height, y, 0, (source_width + 1) / 2, out);
+}
+
+void DualFilterDownRow(const float* const rows[4], int source_width, int source_height, int y,
+                       int begin, int end, float* out) {
   const std::vector<Tap>& taps = DownTaps();
   const int width = (source_width + 1) / 2;
   // Destination pixels whose taps all lie inside: 2x - 1 >= 0 and 2x + 2 < source_width.
   const bool row_inside = 2 * y - 1 >= 0 && 2 * y + 2 < source_height;
   const int inside_begin = row_inside ? std::min(width, 1) : width;
   const int inside_end = row_inside ? std::max(inside_begin, (source_width - 1) / 2) : width;
-  for (int x = 0; x < inside_begin; ++x) {
+  for (int x = begin; x < std::min(end, inside_begin); ++x) {
     ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
   }
   const ResolvedTaps<kDownTaps> resolved(rows, taps, -1);
-  int x = inside_begin;
+  int x = std::max(begin, inside_begin);
+  const int stop = std::max(x, std::min(end, inside_end));
 #if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, inside_end, out);
+  if (HdrAvx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, stop, out);
 #endif
-  for (; x < inside_end; ++x) {
+  for (; x < stop; ++x) {
     StorePixel(resolved.Sum(int64_t{2 * x} * kC), out + int64_t{x} * kC);
   }
-  for (x = inside_end; x < width; ++x) {
+  for (x = std::max(begin, inside_end); x < end; ++x) {
     ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
   }
 }
@@ -344,7 +397,11 @@ Image DualFilterFromHalf(Image half, int levels) {
   for (int level = 1; level < levels; ++level) chain.push_back(Down(chain.back()));
   Image result = std::move(chain.back());
   for (int level = levels - 2; level >= 0; --level) {
-    result = Up(result, chain[level].width, chain[level].height);
+    // Level `level` has been stepped down from: its storage takes the step back up (no
+    // zero-filled allocation).
+    Image target = std::move(chain[level]);
+    UpInto(result, &target);
+    result = std::move(target);
   }
   return result;
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "core/deterministic_reduce.h"
@@ -127,15 +128,29 @@ BRDF_HDR_AVX2 inline __m256 Log8(__m256 x) {
                        _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(2.0f), s), series));
 }
 
+// Raises target[c] to the largest lane of peak[c] (RaisePeaks' comparison) and resets the
+// lanes to -infinity.
+BRDF_HDR_AVX2 inline void FlushPeaks(__m256 peak[3], float* target) {
+  for (int c = 0; c < 3; ++c) {
+    alignas(32) float lanes[8];
+    _mm256_store_ps(lanes, peak[c]);
+    for (float lane : lanes) target[c] = lane > target[c] ? lane : target[c];
+    peak[c] = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
+  }
+}
+
 // AddRow's loop eight pixels at a time: pixels x0..x0+3 are folded into the lanes, then
 // x0+4..x0+7, each group as AddFour does it (the library's log for a whole group of four with
 // an argument that is not a normal float). Returns the first pixel not folded.
 //
-// With kExpose, the row is made on the way from `in` (and `add`) as ExposeRow does it, and
-// stored to `keep` when that is not null; otherwise `in` is the row and the rest unused.
+// With kExpose, the row is made on the way from `in` (and `add`) as ExposeRow does it, and its
+// red, green and blue stored to the planes keep[x], keep[width + x], keep[2 width + x] when
+// `keep` is not null; otherwise `in` is the row and the rest unused.
+// `peaks` (not null): the row's segment peaks (exposure.h) raised to the largest red, green and
+// blue of the pixels folded, as RaisePeaks does it.
 template <bool kExpose>
 BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, float strength,
-                             float* keep, int width, float delta, LaneSums* sums) {
+                             float* keep, int width, float delta, LaneSums* sums, float* peaks) {
   __m256d log_sum, lit_log_sum;
   std::memcpy(&log_sum, &sums->log_sum, sizeof(log_sum));
   std::memcpy(&lit_log_sum, &sums->lit_log_sum, sizeof(lit_log_sum));
@@ -155,6 +170,12 @@ BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, flo
   const __m256 smallest = _mm256_set1_ps(std::numeric_limits<float>::min());
   int x0 = 0;
   const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
+  // The peaks of segment `pending` so far, eight lanes each.
+  const __m256 lowest = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
+  __m256 peak[3] = {lowest, lowest, lowest};
+  static_assert(kPeakSegment % 8 == 0, "eight pixels lie in one segment");
+  int pending = -1;
+
   for (; x0 + 8 <= width; x0 += 8) {
     const int64_t at = int64_t{x0} * Image::kChannels;
     __m256 quad[4], channel[4];
@@ -172,13 +193,21 @@ BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, flo
           exposed = _mm256_add_ps(exposed, _mm256_mul_ps(strength8, bloom));
         }
         quad[k] = _mm256_blend_ps(exposed, quad[k], 0x88);  // alpha kept
-        if (keep != nullptr) {
-          _mm_storeu_ps(keep + at + 4 * k, _mm256_castps256_ps128(quad[k]));
-          _mm_storeu_ps(keep + at + 16 + 4 * k, _mm256_extractf128_ps(quad[k], 1));
-        }
       }
     }
     TransposeQuads(quad, channel);
+    if (kExpose && keep != nullptr) {  // the exposed red, green and blue as planes
+      for (int c = 0; c < 3; ++c) _mm256_storeu_ps(keep + int64_t{c} * width + x0, channel[c]);
+    }
+    if (peaks != nullptr) {
+      const int segment = x0 / kPeakSegment;  // eight pixels never straddle two segments
+      if (segment != pending) {
+        if (pending >= 0) FlushPeaks(peak, peaks + 3 * pending);
+        pending = segment;
+      }
+      // maxps(v, peak) is v > peak ? v : peak, RaisePeaks' comparison (NaN skipped).
+      for (int c = 0; c < 3; ++c) peak[c] = _mm256_max_ps(channel[c], peak[c]);
+    }
     // PixelLuminance's operations in its order, then std::max(0, L) (NaN gives 0).
     __m256 luminance =
         _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(0.2126f), channel[0]),
@@ -225,6 +254,7 @@ BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, flo
   std::memcpy(&sums->max, &max4, sizeof(max4));
   std::memcpy(&sums->pixels, &pixels4, sizeof(pixels4));
   std::memcpy(&sums->black, &black4, sizeof(black4));
+  if (peaks != nullptr && pending >= 0) FlushPeaks(peak, peaks + 3 * pending);
   return x0;
 }
 
@@ -270,6 +300,18 @@ void ExposeRowFrom(const float* in, const float* add, int x0, int width, float s
     out[i + 1] = in[i + 1] * scale + strength * add[i + 1];
     out[i + 2] = in[i + 2] * scale + strength * add[i + 2];
     out[i + 3] = in[i + 3];
+  }
+}
+
+// Raises each segment's peaks[3 s + c] to the largest channel c (red, green, blue) of its
+// pixels among [x0, width) of an RGBA row; a NaN never wins a comparison, so it is skipped.
+void RaisePeaks(const float* row, int x0, int width, float* peaks) {
+  for (int x = x0; x < width; ++x) {
+    float* peak = peaks + 3 * (x / kPeakSegment);
+    for (int c = 0; c < 3; ++c) {
+      const float v = row[int64_t{x} * Image::kChannels + c];
+      peak[c] = v > peak[c] ? v : peak[c];
+    }
   }
 }
 
@@ -322,10 +364,11 @@ SceneLuminance MeasureRows(int width, int height, double delta, const Fold& fold
   const LogSum total = DeterministicReduce(
       int64_t{height}, rows_per_chunk, LogSum{},
       [&](int64_t begin, int64_t end, LogSum sum) {
-        std::vector<float> scratch(2 * int64_t{width} * Image::kChannels);
+        // Written before it is read (the row callbacks' contract): not zero-filled.
+        const std::unique_ptr<float[]> scratch(new float[2 * int64_t{width} * Image::kChannels]);
         LaneSums lanes;
         for (int64_t y = begin; y < end; ++y) {
-          fold(static_cast<int>(y), scratch.data(), delta_f, &lanes);
+          fold(static_cast<int>(y), scratch.get(), delta_f, &lanes);
         }
         const LogSum chunk = Join(lanes);
         sum.log_sum += chunk.log_sum;
@@ -357,16 +400,24 @@ SceneLuminance MeasureRows(int width, int height, double delta, const Fold& fold
 
 SceneLuminance MeasureSceneLuminanceByRow(
     int width, int height, double delta,
-    const std::function<const float*(int y, float* scratch)>& row) {
+    const std::function<const float*(int y, float* scratch)>& row, float* peaks) {
   return MeasureRows(
       width, height, delta, [&](int y, float* scratch, float delta_f, LaneSums* lanes) {
         const float* pixels = row(y, scratch);
+        float* const row_peaks =
+            peaks == nullptr ? nullptr : peaks + 3 * int64_t{y} * PeakSegments(width);
+        if (row_peaks != nullptr) {
+          std::fill(row_peaks, row_peaks + 3 * PeakSegments(width),
+                    -std::numeric_limits<float>::infinity());
+        }
         int x0 = 0;
 #if BRDF_HDR_HAS_AVX2_PATHS
         if (HdrAvx2Enabled()) {
-          x0 = AddRowAvx2<false>(pixels, nullptr, 1.0f, 0.0f, nullptr, width, delta_f, lanes);
+          x0 = AddRowAvx2<false>(pixels, nullptr, 1.0f, 0.0f, nullptr, width, delta_f, lanes,
+                                 row_peaks);
         }
 #endif
+        if (row_peaks != nullptr) RaisePeaks(pixels, x0, width, row_peaks);
         AddRow(pixels, x0, width, delta_f, lanes);
       });
 }
@@ -377,18 +428,25 @@ SceneLuminance MeasureExposedLuminanceByRow(
   return MeasureRows(
       width, height, delta, [&](int y, float* scratch, float delta_f, LaneSums* lanes) {
         const ExposedRowSource source = row(y, scratch);
-        // The exposed row is made where it is kept, or in the scratch row's second half.
-        float* exposed =
-            source.keep != nullptr ? source.keep : scratch + int64_t{width} * Image::kChannels;
+        // The exposed pixels the vector path leaves (all of them without it) are made in the
+        // scratch row's second half, and copied to the kept planes from there.
+        float* exposed = scratch + int64_t{width} * Image::kChannels;
         int x0 = 0;
 #if BRDF_HDR_HAS_AVX2_PATHS
         if (HdrAvx2Enabled()) {
           x0 = AddRowAvx2<true>(source.in, source.add, scale, strength, source.keep, width, delta_f,
-                                lanes);
+                                lanes, nullptr);
         }
 #endif
         ExposeRowFrom(source.in, source.add, x0, width, scale, strength, exposed);
         AddRow(exposed, x0, width, delta_f, lanes);
+        if (source.keep != nullptr) {
+          for (int x = x0; x < width; ++x) {
+            for (int c = 0; c < 3; ++c) {
+              source.keep[int64_t{c} * width + x] = exposed[int64_t{x} * Image::kChannels + c];
+            }
+          }
+        }
       });
 }
 
@@ -397,9 +455,9 @@ void ExposeRow(const float* in, const float* add, int width, float scale, float 
   ExposeRowFrom(in, add, 0, width, scale, strength, out);
 }
 
-SceneLuminance MeasureSceneLuminance(const Image& image, double delta) {
-  return MeasureSceneLuminanceByRow(image.width, image.height, delta,
-                                    [&](int y, float*) { return image.pixel(0, y); });
+SceneLuminance MeasureSceneLuminance(const Image& image, double delta, float* peaks) {
+  return MeasureSceneLuminanceByRow(
+      image.width, image.height, delta, [&](int y, float*) { return image.pixel(0, y); }, peaks);
 }
 
 void ApplyExposure(Image* image, double exposure) {

@@ -22,7 +22,22 @@ struct SceneLuminance {
   int64_t black_pixels = 0;
   double log_average_lit = 0.0;
 };
-SceneLuminance MeasureSceneLuminance(const Image& image, double delta = 1e-4);
+// With `peaks` (PeakFloats(width, height) floats): the largest red, green and blue of each
+// segment of each row (PeakAt), NaN skipped (-infinity for a segment of NaN only). The bright
+// pass (bloom.h) uses them to skip the segments it can prove dark.
+SceneLuminance MeasureSceneLuminance(const Image& image, double delta = 1e-4,
+                                     float* peaks = nullptr);
+// Row segments of the peaks: pixels [kPeakSegment s, kPeakSegment (s + 1)) of a row.
+constexpr int kPeakSegment = 64;
+inline int PeakSegments(int width) { return (width + kPeakSegment - 1) / kPeakSegment; }
+inline int64_t PeakFloats(int width, int height) {
+  return 3 * int64_t{PeakSegments(width)} * height;
+}
+// The red, green and blue peaks of segment `segment` of row y.
+inline const float* PeakAt(const float* peaks, int width, int y, int segment) {
+  return peaks + 3 * (int64_t{y} * PeakSegments(width) + segment);
+}
+
 // The same statistics of a width x height image that exists only a row at a time (the fused
 // pipeline measures the exposed and bloomed image without storing it): `row(y, scratch)`
 // returns row y, `width` RGBA pixels, written into `scratch` (room for two such rows) or held
@@ -31,13 +46,15 @@ SceneLuminance MeasureSceneLuminance(const Image& image, double delta = 1e-4);
 // thread count; MeasureSceneLuminance(image) is this with the image's own rows.
 SceneLuminance MeasureSceneLuminanceByRow(
     int width, int height, double delta,
-    const std::function<const float*(int y, float* scratch)>& row);
+    const std::function<const float*(int y, float* scratch)>& row, float* peaks = nullptr);
 
 // The statistics of an exposed (and bloomed) image that exists only a row at a time: row y
 // has RGB = scale * in + strength * add (`add` null: no bloom), alpha that of `in`, as
 // ExposeRow() makes it. `row(y, scratch)` returns row y's `in` and `add` (`scratch` has room
-// for one RGBA row, e.g. for a bloom row made on the fly) and where to keep the exposed row
-// (null: nowhere). Summed like MeasureSceneLuminanceByRow, with the same result.
+// for one RGBA row, e.g. for a bloom row made on the fly) and where to keep the exposed row's
+// red, green and blue (null: nowhere): three planes of `width` floats, keep[x],
+// keep[width + x], keep[2 width + x]. Summed like MeasureSceneLuminanceByRow, with the same
+// result.
 struct ExposedRowSource {
   const float* in = nullptr;
   const float* add = nullptr;

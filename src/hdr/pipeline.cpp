@@ -104,17 +104,70 @@ namespace {
 // Rows per task of the last pass.
 constexpr int kRowsPerTask = 8;
 
+// Pixel x of a row kept as red, green and blue planes of `width` floats, as RGB.
+inline void KeptPixel(const float* planes, int width, int x, float rgb[3]) {
+  for (int c = 0; c < 3; ++c) rgb[c] = planes[int64_t{c} * width + x];
+}
+
 #if BRDF_HDR_HAS_AVX2_PATHS
-// PixelToneMap<kOperator> on the pixels [0, 8n) of an RGBA row, eight at a time with its
-// operations in its order; writes the planes red[x], green[x], blue[x]; returns 8n. Not for
-// the exponential operator (std::exp has no exact vector twin). The row is `row`, or with
-// kExpose the row ExposeRow(row, add, scale, strength) would make, made here on the way.
-template <ToneOperator kOperator, bool kExpose>
+// PixelToneMap<kOperator> on eight pixels given as planes channel[c], with its operations in
+// its order, into red[0..8), green[0..8), blue[0..8). Not for the exponential operator
+// (std::exp has no exact vector twin).
+template <ToneOperator kOperator>
+BRDF_HDR_AVX2 inline void ToneMapEightAvx2(const __m256 channel[3], __m256 key8,
+                                           __m256 white_squared, float* red, float* green,
+                                           float* blue) {
+  static_assert(kOperator != ToneOperator::kExposure, "std::exp has no exact vector twin");
+  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+  const __m256 world =
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(0.2126f), channel[0]),
+                                  _mm256_mul_ps(_mm256_set1_ps(0.7152f), channel[1])),
+                    _mm256_mul_ps(_mm256_set1_ps(0.0722f), channel[2]));
+  __m256 display = world;
+  if constexpr (kOperator == ToneOperator::kReinhard) {
+    const __m256 scaled = _mm256_mul_ps(key8, world);
+    display = _mm256_div_ps(scaled, _mm256_add_ps(one, scaled));
+  } else if constexpr (kOperator == ToneOperator::kReinhardExtended) {
+    const __m256 scaled = _mm256_mul_ps(key8, world);
+    display = _mm256_div_ps(
+        _mm256_mul_ps(scaled, _mm256_add_ps(one, _mm256_div_ps(scaled, white_squared))),
+        _mm256_add_ps(one, scaled));
+  }
+  // L_d / L_w where L_w > 0, else 0.
+  const __m256 ratio =
+      _mm256_and_ps(_mm256_div_ps(display, world), _mm256_cmp_ps(world, zero, _CMP_GT_OQ));
+  float* const planes[3] = {red, green, blue};
+  for (int c = 0; c < 3; ++c) {
+    // std::clamp(v, 0, 1): v < 0 ? 0 : (1 < v ? 1 : v).
+    __m256 v = _mm256_mul_ps(channel[c], ratio);
+    v = _mm256_blendv_ps(v, zero, _mm256_cmp_ps(v, zero, _CMP_LT_OQ));
+    v = _mm256_blendv_ps(v, one, _mm256_cmp_ps(one, v, _CMP_LT_OQ));
+    _mm256_storeu_ps(planes[c], v);
+  }
+}
+
+// PixelToneMap<kOperator> on the pixels [0, 8n) of a row kept as three planes (in[x],
+// in[width + x], in[2 width + x]); returns 8n.
+template <ToneOperator kOperator>
+BRDF_HDR_AVX2 int ToneMapPlanesAvx2(const float* in, int width, float key_scale, float white,
+                                    float* red, float* green, float* blue) {
+  const __m256 key8 = _mm256_set1_ps(key_scale), white_squared = _mm256_set1_ps(white * white);
+  int x = 0;
+  for (; x + 8 <= width; x += 8) {
+    const __m256 channel[3] = {_mm256_loadu_ps(in + x), _mm256_loadu_ps(in + width + x),
+                               _mm256_loadu_ps(in + 2 * int64_t{width} + x)};
+    ToneMapEightAvx2<kOperator>(channel, key8, white_squared, red + x, green + x, blue + x);
+  }
+  return x;
+}
+
+// PixelToneMap<kOperator> on the pixels [0, 8n) of the RGBA row ExposeRow(row, add, scale,
+// strength) would make, made here on the way; writes the planes red[x], green[x], blue[x];
+// returns 8n.
+template <ToneOperator kOperator>
 BRDF_HDR_AVX2 int ToneMapRowAvx2(const float* row, const float* add, float scale, float strength,
                                  int width, float key_scale, float white, float* red, float* green,
                                  float* blue) {
-  static_assert(kOperator != ToneOperator::kExposure, "std::exp has no exact vector twin");
-  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
   const __m256 key8 = _mm256_set1_ps(key_scale), white_squared = _mm256_set1_ps(white * white);
   const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
   int x = 0;
@@ -124,14 +177,13 @@ BRDF_HDR_AVX2 int ToneMapRowAvx2(const float* row, const float* add, float scale
     for (int k = 0; k < 4; ++k) {
       quad[k] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(row + at + 4 * k)),
                                      _mm_loadu_ps(row + at + 16 + 4 * k), 1);
-      if constexpr (kExpose) {  // ExposeRow's arithmetic (alpha is not needed here)
-        quad[k] = _mm256_mul_ps(quad[k], scale8);
-        if (add != nullptr) {
-          const __m256 bloom =
-              _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(add + at + 4 * k)),
-                                   _mm_loadu_ps(add + at + 16 + 4 * k), 1);
-          quad[k] = _mm256_add_ps(quad[k], _mm256_mul_ps(strength8, bloom));
-        }
+      // ExposeRow's arithmetic (alpha is not needed here).
+      quad[k] = _mm256_mul_ps(quad[k], scale8);
+      if (add != nullptr) {
+        const __m256 bloom =
+            _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(add + at + 4 * k)),
+                                 _mm_loadu_ps(add + at + 16 + 4 * k), 1);
+        quad[k] = _mm256_add_ps(quad[k], _mm256_mul_ps(strength8, bloom));
       }
     }
     const __m256 t0 = _mm256_unpacklo_ps(quad[0], quad[1]),
@@ -140,31 +192,7 @@ BRDF_HDR_AVX2 int ToneMapRowAvx2(const float* row, const float* add, float scale
                  t3 = _mm256_unpackhi_ps(quad[2], quad[3]);
     const __m256 channel[3] = {_mm256_shuffle_ps(t0, t2, 0x44), _mm256_shuffle_ps(t0, t2, 0xee),
                                _mm256_shuffle_ps(t1, t3, 0x44)};
-    const __m256 world =
-        _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(_mm256_set1_ps(0.2126f), channel[0]),
-                                    _mm256_mul_ps(_mm256_set1_ps(0.7152f), channel[1])),
-                      _mm256_mul_ps(_mm256_set1_ps(0.0722f), channel[2]));
-    __m256 display = world;
-    if constexpr (kOperator == ToneOperator::kReinhard) {
-      const __m256 scaled = _mm256_mul_ps(key8, world);
-      display = _mm256_div_ps(scaled, _mm256_add_ps(one, scaled));
-    } else if constexpr (kOperator == ToneOperator::kReinhardExtended) {
-      const __m256 scaled = _mm256_mul_ps(key8, world);
-      display = _mm256_div_ps(
-          _mm256_mul_ps(scaled, _mm256_add_ps(one, _mm256_div_ps(scaled, white_squared))),
-          _mm256_add_ps(one, scaled));
-    }
-    // L_d / L_w where L_w > 0, else 0.
-    const __m256 ratio =
-        _mm256_and_ps(_mm256_div_ps(display, world), _mm256_cmp_ps(world, zero, _CMP_GT_OQ));
-    float* const planes[3] = {red + x, green + x, blue + x};
-    for (int c = 0; c < 3; ++c) {
-      // std::clamp(v, 0, 1): v < 0 ? 0 : (1 < v ? 1 : v).
-      __m256 v = _mm256_mul_ps(channel[c], ratio);
-      v = _mm256_blendv_ps(v, zero, _mm256_cmp_ps(v, zero, _CMP_LT_OQ));
-      v = _mm256_blendv_ps(v, one, _mm256_cmp_ps(one, v, _CMP_LT_OQ));
-      _mm256_storeu_ps(planes[c], v);
-    }
+    ToneMapEightAvx2<kOperator>(channel, key8, white_squared, red + x, green + x, blue + x);
   }
   return x;
 }
@@ -229,7 +257,14 @@ class ExposedRows {
 ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   options.Validate();
   ToneResult result;
-  result.scene = MeasureSceneLuminance(image, options.delta);
+  const bool blooming = options.bloom != BlurKind::kNone && options.bloom_strength > 0.0;
+  // The row segments' channel peaks let the fused bright pass skip what they prove dark.
+  std::vector<float> peaks;
+  if (blooming && options.bloom == BlurKind::kDual) {
+    peaks.resize(PeakFloats(image.width, image.height));
+  }
+  result.scene =
+      MeasureSceneLuminance(image, options.delta, peaks.empty() ? nullptr : peaks.data());
   result.exposure = options.exposure ? *options.exposure : AutoExposure(result.scene, options.key);
   if (!options.exposure) {
     const std::string warning = BlackPixelWarning(result.scene);
@@ -238,11 +273,11 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
 
   Image bloom;
   bool bloom_is_half = false;
-  const bool blooming = options.bloom != BlurKind::kNone && options.bloom_strength > 0.0;
   if (blooming) {
     if (options.bloom == BlurKind::kDual) {
-      bloom = DualFilterFromHalf(BrightPassDown(image, options.bloom_threshold, result.exposure),
-                                 DualFilterLevelsForSigma(options.bloom_sigma));
+      bloom = DualFilterFromHalf(
+          BrightPassDown(image, options.bloom_threshold, result.exposure, peaks.data()),
+          DualFilterLevelsForSigma(options.bloom_sigma));
       bloom_is_half = true;
     } else {
       bloom = Blur(BrightPass(image, options.bloom_threshold, result.exposure), options.bloom,
@@ -263,13 +298,16 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   // With dual-filter bloom a row costs its doubling step (13 taps a pixel): the statistics
   // pass keeps the rows it makes for the last pass, which then reads them instead (one write
   // and one read of the frame cost less than the taps again).
+  // The rows are kept as red, green and blue planes (tone mapping reads no alpha): three
+  // quarters of the memory traffic of RGBA rows, and no interleaving on either side.
   std::unique_ptr<float[]> kept;
+  const int64_t kept_floats = 3 * int64_t{width};
   if (reinhard) {
-    if (bloom_is_half) kept.reset(new float[image.pixel_count() * Image::kChannels]);
+    if (bloom_is_half) kept.reset(new float[kept_floats * image.height]);
     mapped = MeasureExposedLuminanceByRow(width, image.height, options.delta, rows.scale(),
                                           rows.strength(), [&](int y, float* scratch) {
                                             ExposedRowSource source = rows.Sources(y, scratch);
-                                            if (kept) source.keep = kept.get() + y * row_floats;
+                                            if (kept) source.keep = kept.get() + y * kept_floats;
                                             return source;
                                           });
   }
@@ -285,40 +323,42 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   ForToneOperator(result.mapping, [&](const auto& map) {
     [[maybe_unused]] constexpr ToneOperator kOperator = std::decay_t<decltype(map)>::kToneOperator;
     tbb::parallel_for(0, tasks, [&](int task) {
-      std::vector<float> scratch(2 * row_floats);
+      // Every float of these rows is written before it is read: not zero-filled (a vector's
+      // zero-filling, per task, cost as much as a pass over the frame).
+      const std::unique_ptr<float[]> scratch_rows(new float[2 * row_floats]);
+      float* const scratch = scratch_rows.get();
       // One row tone mapped: RGB, or (AVX2) three planes.
-      std::vector<float> mapped(int64_t{width} * 3);
+      const std::unique_ptr<float[]> mapped_row(new float[int64_t{width} * 3]);
+      float* const mapped = mapped_row.get();
       const int y1 = std::min(image.height, (task + 1) * kRowsPerTask);
       for (int y = task * kRowsPerTask; y < y1; ++y) {
         uint8_t* out = display.rgb.data() + int64_t{y} * width * 3;
 #if BRDF_HDR_HAS_AVX2_PATHS
         if constexpr (kOperator != ToneOperator::kExposure) {
           if (avx2) {
-            float* const red = mapped.data();
+            float* const red = mapped;
             float* const green = red + width;
             float* const blue = green + width;
-            // The kept row, or the exposure (and bloom) made on the way from the input.
-            const float* row = nullptr;
+            // The kept planes, or the exposure (and bloom) made on the way from the input.
+            const float* const planes = kept ? kept.get() + y * kept_floats : nullptr;
             int x = 0;
-            if (kept) {
-              row = kept.get() + y * row_floats;
-              x = ToneMapRowAvx2<kOperator, false>(row, nullptr, 1.0f, 0.0f, width, map.key_scale(),
-                                                   map.white(), red, green, blue);
+            if (planes != nullptr) {
+              x = ToneMapPlanesAvx2<kOperator>(planes, width, map.key_scale(), map.white(), red,
+                                               green, blue);
             } else {
-              const ExposedRowSource source = rows.Sources(y, scratch.data() + row_floats);
-              x = ToneMapRowAvx2<kOperator, true>(source.in, source.add, rows.scale(),
-                                                  rows.strength(), width, map.key_scale(),
-                                                  map.white(), red, green, blue);
+              const ExposedRowSource source = rows.Sources(y, scratch + row_floats);
+              x = ToneMapRowAvx2<kOperator>(source.in, source.add, rows.scale(), rows.strength(),
+                                            width, map.key_scale(), map.white(), red, green, blue);
               if (x < width) {  // the last pixels through the scalar path
                 const int64_t at = int64_t{x} * Image::kChannels;
                 ExposeRow(source.in + at, source.add == nullptr ? nullptr : source.add + at,
-                          width - x, rows.scale(), rows.strength(), scratch.data() + at);
+                          width - x, rows.scale(), rows.strength(), scratch + at);
               }
-              row = scratch.data();
             }
             for (; x < width; ++x) {
-              float rgb[3];
-              map(row + int64_t{x} * Image::kChannels, rgb);
+              float in[3], rgb[3];
+              if (planes != nullptr) KeptPixel(planes, width, x, in);
+              map(planes != nullptr ? in : scratch + int64_t{x} * Image::kChannels, rgb);
               red[x] = rgb[0], green[x] = rgb[1], blue[x] = rgb[2];
             }
             quantize.EncodePlanes(red, green, blue, width, out);
@@ -326,12 +366,20 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
           }
         }
 #endif
-        const float* row = kept ? kept.get() + y * row_floats
-                                : rows.Row(y, scratch.data(), scratch.data() + row_floats);
-        for (int x = 0; x < width; ++x) {
-          map(row + int64_t{x} * Image::kChannels, mapped.data() + 3 * x);
+        if (kept) {
+          const float* const planes = kept.get() + y * kept_floats;
+          for (int x = 0; x < width; ++x) {
+            float in[3];
+            KeptPixel(planes, width, x, in);
+            map(in, mapped + 3 * x);
+          }
+        } else {
+          const float* row = rows.Row(y, scratch, scratch + row_floats);
+          for (int x = 0; x < width; ++x) {
+            map(row + int64_t{x} * Image::kChannels, mapped + 3 * x);
+          }
         }
-        quantize.EncodeMany(mapped.data(), int64_t{width} * 3, out);
+        quantize.EncodeMany(mapped, int64_t{width} * 3, out);
       }
     });
   });
