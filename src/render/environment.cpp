@@ -170,7 +170,7 @@ Environment::Sample Environment::SampleDirection(double u1, double u2) const {
 
 uint32_t Environment::DrawFloat(uint32_t slot, uint64_t bits, float v_in_pixel, float* u,
                                 float* v) const {
-  // Selects, not a branch: which way a draw goes is random (render/float_math.h).
+  // Selects, not a branch: which way a draw goes is random (core/float_math.h).
   const float below = static_cast<float>(bits & 0xffffff) * 0x1.0p-24f;
   const Texel& entry = texels_[slot];
   const bool aliased = !(below < entry.keep);
