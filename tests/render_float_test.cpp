@@ -1,4 +1,4 @@
-// The preview's single-precision hot path against its double reference (render/float_math.h,
+// The preview's single-precision hot path against its double reference (core/float_math.h,
 // lobe_sampler.h, the float environment draw and the float evaluators): polynomials against
 // libm; each sampler against its own pdf (a chi-square test over bins of the lobe's polar
 // angle, the pdf integrating to one, the environment's importance-sampled integral against
@@ -11,12 +11,13 @@
 #include <random>
 
 #include "core/angles.h"
+#include "core/float_math.h"
 #include "core/sampling.h"
 #include "energy/monte_carlo.h"
 #include "io/formats.h"
+#include "models/common.h"
 #include "models/model_string.h"
 #include "render/environment.h"
-#include "render/float_math.h"
 #include "render/lobe_sampler.h"
 #include "render/material.h"
 #include "test_util.h"
@@ -275,6 +276,55 @@ TEST(RenderFloat, FloatEvaluatorsAgreeWithEval) {
       for (int c = 0; c < 3; ++c) {
         ASSERT_NEAR(value[c], expected[c], 1e-3 * std::abs(expected[c]) + 1e-6)
             << spec << " " << wi.transpose() << " " << wo.transpose();
+      }
+    }
+  }
+}
+
+TEST(RenderFloat, PolynomialPowerIsPow) {
+  // exp(e ln x) in float: a few float ulps, plus the rounding of e ln x, which the power scales
+  // by |e ln x| (the same order as rounding x itself to float costs, models/common.h).
+  for (float e : {0.0f, 0.5f, 1.0f, 8.0f, 200.0f, 5000.0f, 16000.0f}) {
+    for (int k = 1; k <= 16000; ++k) {
+      const float x = 1.0f - std::ldexp(static_cast<float>(k), -14) * (k % 3 == 0 ? 1e-3f : 1.0f);
+      const double expected = std::pow(double{x}, double{e});
+      if (!(expected > 1e-30)) continue;
+      const double log_size = std::abs(e * std::log(double{x}));
+      ASSERT_NEAR(models::ClampedPow(x, e), expected, 0x1.0p-21 * (1.0 + log_size) * expected)
+          << x << "^" << e;
+    }
+  }
+  EXPECT_EQ(models::ClampedPow(0.0f, 2.0f), 0.0f);
+  EXPECT_EQ(models::ClampedPow(-0.5f, 2.0f), 0.0f);
+  EXPECT_EQ(models::ClampedPow(1.0f, 300.0f), 1.0f);
+}
+
+TEST(RenderFloat, BatchEvaluationIsEvalFloat) {
+  std::mt19937_64 random(23);
+  for (const std::string& spec :
+       {std::string("blinn-phong:rho_d=0.3:rho_s=0.5:m=200"), std::string("phong:n=400"),
+        std::string("ggx:rho_d=0.1:f0=0.9,0.5,0.2:alpha=0.05"), std::string("beckmann:alpha=0.3"),
+        std::string("lambert:rho_d=0.4")}) {
+    const std::unique_ptr<Material> material = LoadMaterial(spec);
+    for (int trial = 0; trial < 200; ++trial) {
+      Vec3 wo = UniformSphere(random);
+      wo.z() = std::abs(wo.z());
+      // 24 directions (a chunk of 16 and one of 8), some below the horizon, some near the
+      // mirror direction.
+      float x[24], y[24], z[24];
+      for (int k = 0; k < 24; ++k) {
+        Vec3 wi = UniformSphere(random);
+        if (k % 3 == 0)
+          wi = Reflect(wo, (Vec3(0, 0, 1) + 0.03 * UniformSphere(random)).normalized());
+        x[k] = static_cast<float>(wi.x()), y[k] = static_cast<float>(wi.y());
+        z[k] = static_cast<float>(wi.z());
+      }
+      const Vec3f wo_float = wo.cast<float>();
+      RgbF batch[24];
+      material->EvalFloatBatch(x, y, z, wo_float, 24, batch);
+      for (int k = 0; k < 24; ++k) {
+        const RgbF single = material->EvalFloat(Vec3f(x[k], y[k], z[k]), wo_float);
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(batch[k][c], single[c]) << spec << " " << k;
       }
     }
   }

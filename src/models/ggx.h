@@ -73,32 +73,38 @@ struct Ggx : MicrofacetModel<Ggx> {
         length2 > T(0) ? Vec3T<T>(-view.y(), view.x(), T(0)) / sqrt(length2) : Vec3T<T>(1, 0, 0);
     return {view, t1, view.cross(t1), alpha};
   }
+  // sin and cos of the turn u1 (phi = 2 pi u1): libm's in double, the branch-free polynomial
+  // (core/float_math.h) in float, so that a batch of draws vectorizes.
+  static void SinCosOfTurn(double u1, double* sine, double* cosine) {
+    *sine = std::sin(2.0 * kPi * u1);
+    *cosine = std::cos(2.0 * kPi * u1);
+  }
+  static void SinCosOfTurn(float u1, float* sine, float* cosine) { SinCosTurn(u1, sine, cosine); }
   template <typename T>
   static Vec3T<T> SampleVisibleNormal(const VisibleNormalFrame<T>& frame, T u0, T u1) {
-    using std::cos;
-    using std::sin;
     using std::sqrt;
-    const T radius = sqrt(u0), phi = T(2.0 * kPi) * u1;
-    const T p1 = radius * cos(phi);
+    T sin_phi, cos_phi;
+    SinCosOfTurn(u1, &sin_phi, &cos_phi);
+    const T radius = sqrt(u0);
+    const T p1 = radius * cos_phi;
     const T blend = T(0.5) * (T(1) + frame.view.z());
-    const T p2 = (T(1) - blend) * sqrt(std::max(T(0), T(1) - p1 * p1)) + blend * radius * sin(phi);
+    const T p2 = (T(1) - blend) * sqrt(std::max(T(0), T(1) - p1 * p1)) + blend * radius * sin_phi;
     const Vec3T<T> normal =
         p1 * frame.t1 + p2 * frame.t2 + sqrt(std::max(T(0), T(1) - p1 * p1 - p2 * p2)) * frame.view;
-    return Vec3T<T>(frame.alpha * normal.x(), frame.alpha * normal.y(), std::max(T(0), normal.z()))
-        .normalized();
+    // Divided by its length without Eigen's test for a zero vector (normalized()), which would
+    // keep a batch of draws scalar: the length is at least cos(theta_h) > 0 for wo above the
+    // surface.
+    const Vec3T<T> unstretched(frame.alpha * normal.x(), frame.alpha * normal.y(),
+                               std::max(T(0), normal.z()));
+    return unstretched / sqrt(unstretched.squaredNorm());
   }
   static Vec3 SampleVisibleNormal(const Vec3& wo, double u0, double u1, double alpha) {
     return SampleVisibleNormal(VisibleNormalFrameOf(wo, alpha), u0, u1);
   }
-  // A batch of draws in float for one wo (the renderer's, models/lobe.h).
+  // A batch of draws in float for one wo (the renderer's, models/lobe.h); in ggx.cpp, which is
+  // compiled so that its loop vectorizes.
   static void SampleVisibleNormals(const Vec3T<float>& wo, const float* u0, const float* u1,
-                                   int count, float* x, float* y, float* z, float alpha) {
-    const VisibleNormalFrame<float> frame = VisibleNormalFrameOf(wo, alpha);
-    for (int k = 0; k < count; ++k) {
-      const Vec3T<float> h = SampleVisibleNormal(frame, u0[k], u1[k]);
-      x[k] = h.x(), y[k] = h.y(), z[k] = h.z();
-    }
-  }
+                                   int count, float* x, float* y, float* z, float alpha);
   static double VisibleNormalDensity(const Vec3& wo, const Vec3& h, double alpha) {
     const double wo_dot_h = wo.dot(h);
     if (!(wo.z() > 0.0) || !(h.z() > 0.0) || !(wo_dot_h > 0.0)) return 0.0;

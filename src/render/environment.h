@@ -23,9 +23,9 @@
 #include <string>
 #include <vector>
 
+#include "core/float_math.h"
 #include "core/vec.h"
 #include "hdr/image.h"
-#include "render/float_math.h"
 
 namespace brdf {
 

@@ -16,10 +16,10 @@
 #include <cmath>
 #include <vector>
 
+#include "core/float_math.h"
 #include "energy/monte_carlo.h"
 #include "hdr/simd.h"
 #include "models/lobe.h"
-#include "render/float_math.h"
 
 namespace brdf {
 

@@ -33,6 +33,83 @@ void EvalModelBatchInFloat(const float* params, const float* wi_x, const float* 
   }
 }
 
+// The same for the power-cosine and microfacet models, in two loops: first the part of Eval
+// that depends on the angles alone, with a select where Eval returns early, in a loop that
+// vectorizes (8 lanes where the processor has AVX2, else 4: the same float operations, so the
+// same numbers, as Eval's); then the colours. Power cosines (models/common.h,
+// EvalPowerCosine): the lobe N(m) c^m through ClampedPow's polynomial power. Microfacets
+// (models/microfacet.h, MicrofacetModel::Eval): D G2 / (4 cos theta_i cos theta_o) and
+// cos theta_d, then Schlick's Fresnel.
+constexpr int kModelChunk = 16;
+template <typename M>
+BRDF_LANE_FUNCTION void AngularParts(const float* params, const float* wi_x, const float* wi_y,
+                                     const float* wi_z, const Vec3f& wo, int n,
+                                     float* __restrict part, float* __restrict cos_theta_d) {
+  if constexpr (M::kFamily == models::ModelFamily::kPowerCosine) {
+    const float exponent = params[models::LobedSlots::kExponent];
+    const float normalization = M::LobeNormalization(exponent);
+    for (int k = 0; k < n; ++k) {
+      const Vec3f wi(wi_x[k], wi_y[k], wi_z[k]);
+      const float lobe = normalization * models::ClampedPow(M::LobeCosine(wi, wo), exponent);
+      part[k] = models::AboveHorizon(wi, wo) ? lobe : 0.0f;
+    }
+  } else {
+    const float alpha = params[M::kAlpha];
+    for (int k = 0; k < n; ++k) {
+      const Vec3f wi(wi_x[k], wi_y[k], wi_z[k]);
+      const auto angles = M::Angles(wi, wo);
+      const float specular = M::Specular(angles, alpha);
+      part[k] = models::AboveHorizon(wi, wo) ? specular : 0.0f;
+      cos_theta_d[k] = angles.cos_theta_d;
+    }
+  }
+}
+template <typename M>
+void AngularPartsBaseline(const float* params, const float* wi_x, const float* wi_y,
+                          const float* wi_z, const Vec3f& wo, int n, float* part,
+                          float* cos_theta_d) {
+  AngularParts<M>(params, wi_x, wi_y, wi_z, wo, n, part, cos_theta_d);
+}
+template <typename M>
+BRDF_HDR_AVX2 void AngularPartsAvx2(const float* params, const float* wi_x, const float* wi_y,
+                                    const float* wi_z, const Vec3f& wo, int n, float* part,
+                                    float* cos_theta_d) {
+  AngularParts<M>(params, wi_x, wi_y, wi_z, wo, n, part, cos_theta_d);
+}
+template <typename M>
+void EvalLobedBatchInFloat(const float* params, const float* wi_x, const float* wi_y,
+                           const float* wi_z, const Vec3f& wo, int count, RgbF* f) {
+  alignas(32) float part[kModelChunk], cos_theta_d[kModelChunk];
+  const bool avx2 = HdrAvx2Enabled();
+  for (int first = 0; first < count; first += kModelChunk) {
+    const int n = std::min(kModelChunk, count - first);
+    (avx2 ? AngularPartsAvx2<M> : AngularPartsBaseline<M>)(params, wi_x + first, wi_y + first,
+                                                           wi_z + first, wo, n, part, cos_theta_d);
+    for (int k = 0; k < n; ++k) {
+      RgbF value = RgbF::Zero();
+      if (wi_z[first + k] > 0.0f && wo.z() > 0.0f) {
+        if constexpr (M::kFamily == models::ModelFamily::kPowerCosine) {
+          value = models::PowerCosineValue(params, part[k]);
+        } else {
+          for (int c = 0; c < 3; ++c) {
+            value[c] = params[M::kRhoD + c] * kInvPiF +
+                       models::SchlickFresnel(cos_theta_d[k], params[M::kF0 + c]) * part[k];
+          }
+        }
+      }
+      f[first + k] = value;
+    }
+  }
+}
+template <typename M>
+FloatModelBatchEval BatchInFloatOf() {
+  if constexpr (M::kFamily == models::ModelFamily::kDiffuse) {
+    return &EvalModelBatchInFloat<M>;
+  } else {
+    return &EvalLobedBatchInFloat<M>;
+  }
+}
+
 // Float keeps a relative rounding error of about e 2^-24 in cos^e (the cosine's last bit,
 // raised to the power e); at most 1e-3, a thousandth of a sample's own noise, float serves.
 // Sharper lobes (e > 16,777) evaluate in double.
@@ -49,7 +126,7 @@ class ModelMaterial : public Material {
         return &EvalModelInFloat<decltype(model_type)>;
       });
       eval_float_batch_ = VisitModelType(model_.name(), [](auto model_type) -> FloatModelBatchEval {
-        return &EvalModelBatchInFloat<decltype(model_type)>;
+        return BatchInFloatOf<decltype(model_type)>();
       });
     }
   }

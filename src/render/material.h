@@ -16,11 +16,11 @@
 #include <optional>
 #include <string>
 
+#include "core/float_math.h"
 #include "core/measurement.h"
 #include "core/vec.h"
 #include "energy/integrand.h"
 #include "models/registry.h"
-#include "render/float_math.h"
 
 namespace brdf {
 

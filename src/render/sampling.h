@@ -20,7 +20,7 @@ class PixelRandom {
   // Uniform in [0, 1), 53 random bits.
   double Uniform() { return generator_.Uniform(); }
   // Uniform in [0, 1), 24 random bits: every value a float holds exactly (the hot loop's warps
-  // are in float, render/float_math.h).
+  // are in float, core/float_math.h).
   float UniformFloat() { return static_cast<float>(generator_.Next() >> 40) * 0x1.0p-24f; }
   // 64 random bits, for a draw that needs more than a float's resolution (an environment pixel
   // out of millions, and the point inside it).

@@ -10,10 +10,10 @@
 
 #include "core/colour.h"
 #include "core/errors.h"
+#include "core/float_math.h"
 #include "core/format.h"
 #include "core/progress.h"
 #include "hdr/simd.h"
-#include "render/float_math.h"
 #include "render/lobe_sampler.h"
 #include "render/sampling.h"
 

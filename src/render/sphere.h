@@ -13,7 +13,7 @@
 // `spp` from the lobe, combined by multiple importance sampling with the power heuristic
 // (Veach & Guibas, "Optimally combining sampling techniques for Monte Carlo rendering",
 // SIGGRAPH 1995). The convex sphere never shadows itself, so no visibility term is needed.
-// The estimate runs in single precision (render/float_math.h, lobe_sampler.h); the directional
+// The estimate runs in single precision (core/float_math.h, lobe_sampler.h); the directional
 // lights in double.
 #pragma once
 

@@ -1,7 +1,8 @@
-// Single-precision pieces of the preview's hot loop (render/sphere.cpp): the vector types, the
-// sine and cosine of a fraction of a turn, atan2, exp and log, as polynomials without libm's
-// argument reduction for arbitrary inputs. Coefficients from S. L. Moshier's Cephes library
-// (sinf.c, cosf.c, atanf.c, expf.c, logf.c; "Methods and Programs for Mathematical
+// Single-precision pieces of the preview's hot loop (render/sphere.cpp, and the models' float
+// evaluation and draws it calls: ClampedPow in models/common.h, ggx's visible normals): the
+// vector types, the sine and cosine of a fraction of a turn, atan2, exp and log, as polynomials
+// without libm's argument reduction for arbitrary inputs. Coefficients from S. L. Moshier's Cephes
+// library (sinf.c, cosf.c, atanf.c, expf.c, logf.c; "Methods and Programs for Mathematical
 // Functions", 1989), accurate to a few float ulps on their reduced ranges; the tests check them
 // against libm in double.
 //
