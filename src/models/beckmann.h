@@ -49,7 +49,7 @@ struct Beckmann : MicrofacetModel<Beckmann> {
   // erfc(a) beside gauss = exp(−a²), which its derivative −2 exp(−a²)/√π needs: a Jet's erfc
   // evaluates that exp again. For a Jet (value .a, derivatives .v) this is Ceres' erfc(Jet),
   // the same expression, with the exp taken from gauss (the same argument, so the same bits):
-  // the fitter evaluates Λ twice a sample, and the exp was a sixth of the Beckmann fit's time.
+  // the fitter evaluates Λ twice a sample (a Beckmann fit of an RGL file: 6 % fewer instructions).
   template <typename T>
   static T ErfcBeside(const T& a, const T& gauss) {
     if constexpr (std::is_floating_point_v<T>) {

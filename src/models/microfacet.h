@@ -116,11 +116,16 @@ struct MicrofacetModel {
   static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
     if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
     const HalfAngles<D> angles = Angles(wi, wo);
-    const T specular = Specular(angles, params[kAlpha]);
+    return Value(params, Specular(angles, params[kAlpha]), angles.cos_theta_d);
+  }
+  // f from the lobe without Fresnel (Specular) and cos theta_d: Eval's last step, and the
+  // renderer's once a batch's angular parts are known (render/material.cpp).
+  template <typename T, typename D>
+  static RgbT<T> Value(const T* params, const T& specular, const D& cos_theta_d) {
     RgbT<T> f;
     for (int c = 0; c < 3; ++c) {
-      f[c] = params[kRhoD + c] * T(kInvPi) +
-             SchlickFresnel(angles.cos_theta_d, params[kF0 + c]) * specular;
+      f[c] =
+          params[kRhoD + c] * T(kInvPi) + SchlickFresnel(cos_theta_d, params[kF0 + c]) * specular;
     }
     return f;
   }

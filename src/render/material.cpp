@@ -87,14 +87,11 @@ void EvalLobedBatchInFloat(const float* params, const float* wi_x, const float* 
                                                            wi_z + first, wo, n, part, cos_theta_d);
     for (int k = 0; k < n; ++k) {
       RgbF value = RgbF::Zero();
-      if (wi_z[first + k] > 0.0f && wo.z() > 0.0f) {
+      if (models::AboveHorizon(Vec3f(wi_x[first + k], wi_y[first + k], wi_z[first + k]), wo)) {
         if constexpr (M::kFamily == models::ModelFamily::kPowerCosine) {
           value = models::PowerCosineValue(params, part[k]);
         } else {
-          for (int c = 0; c < 3; ++c) {
-            value[c] = params[M::kRhoD + c] * kInvPiF +
-                       models::SchlickFresnel(cos_theta_d[k], params[M::kF0 + c]) * part[k];
-          }
+          value = M::Value(params, part[k], cos_theta_d[k]);
         }
       }
       f[first + k] = value;
