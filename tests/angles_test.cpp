@@ -11,24 +11,18 @@
 #include <string>
 
 #include "core/vec.h"
+#include "test_util.h"
 
 namespace brdf {
 namespace {
+
+using testing::RandomUpperDirection;
 
 // How a round degree value prints (the shortest round trip: "5", "22.5").
 std::string FormatNumberForTest(double degrees) {
   std::ostringstream out;
   out << degrees;
   return out.str();
-}
-
-// Uniform direction on the upper hemisphere, never exactly on the horizon.
-Vec3 RandomUpperDirection(std::mt19937* rng) {
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  const double cos_theta = 1.0 - uniform(*rng);
-  const double phi = 2.0 * kPi * uniform(*rng);
-  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-  return Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
 }
 
 // Difference of two azimuths on the circle, in (-π, π].

@@ -12,6 +12,7 @@
 #include "fitters/report.h"
 #include "models/model_string.h"
 #include "synthetic_measurement.h"
+#include "test_util.h"
 
 namespace brdf {
 namespace {
@@ -19,6 +20,8 @@ namespace {
 using fitters::FitModel;
 using fitters::FitOptions;
 using fitters::FitResult;
+using testing::AllWarnings;
+using testing::HasWarning;
 using testing::SynthesizeOnHemisphere;
 using testing::SyntheticOptions;
 
@@ -26,19 +29,6 @@ using testing::SyntheticOptions;
 // the fitter's own and say nothing about reliability).
 const char* kDiagnostics[] = {"lobe narrower", "not identifiable", "coverage",
                               "outliers",      "model mismatch",   "not converged"};
-
-bool HasWarning(const FitResult& fit, const std::string& prefix) {
-  for (const std::string& warning : fit.warnings) {
-    if (warning.rfind(prefix, 0) == 0) return true;
-  }
-  return false;
-}
-
-std::string AllWarnings(const FitResult& fit) {
-  std::string text;
-  for (const std::string& warning : fit.warnings) text += "\n  " + warning;
-  return text;
-}
 
 constexpr const char* kGlossyPhong = "phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:n=300";
 constexpr const char* kGlossyBlinn = "blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.2,0.25,0.3:m=300";

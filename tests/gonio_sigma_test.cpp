@@ -15,22 +15,13 @@
 #include "gonio/measure.h"
 #include "gonio/schedule.h"
 #include "models/model_string.h"
+#include "test_util.h"
 
 namespace brdf::gonio {
 namespace {
 
-bool HasWarning(const fitters::FitResult& fit, const std::string& prefix) {
-  for (const std::string& warning : fit.warnings) {
-    if (warning.rfind(prefix, 0) == 0) return true;
-  }
-  return false;
-}
-
-std::string AllWarnings(const fitters::FitResult& fit) {
-  std::string text;
-  for (const std::string& warning : fit.warnings) text += "\n  " + warning;
-  return text;
-}
+using testing::AllWarnings;
+using testing::HasWarning;
 
 Measurement MeasureMatte(const Instrument& instrument) {
   MeasureOptions options;

@@ -23,6 +23,7 @@
 #include "models/lambert.h"
 #include "models/phong.h"
 #include "models/registry.h"
+#include "test_util.h"
 
 namespace brdf {
 namespace {
@@ -32,21 +33,13 @@ using models::BlinnPhongExact;
 using models::Lambert;
 using models::LobedSlots;
 using models::Phong;
+using testing::RandomUpperDirection;
 
 template <typename M>
 constexpr bool kIsLobed = std::is_base_of_v<LobedSlots, M>;
 
 // ---------------------------------------------------------------------------------------------
 // Sampling and quadrature helpers.
-
-// Uniform direction on the upper hemisphere (z = cos(theta) uniform in (0, 1]).
-Vec3 RandomUpperDirection(std::mt19937* rng) {
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  const double cos_theta = 1.0 - uniform(*rng);  // (0, 1]: never exactly on the horizon
-  const double phi = 2.0 * kPi * uniform(*rng);
-  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-  return Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
-}
 
 // Parameter sets that exercise each model: coloured albedos, and exponents from a broad lobe to
 // a sharp one (the range of real materials in the registry's comment).

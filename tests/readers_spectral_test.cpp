@@ -21,6 +21,7 @@ namespace brdf {
 namespace {
 
 using testing::DataPath;
+using testing::ReplaceFirst;
 using testing::RunBrdf;
 using testing::ScratchDir;
 // Comma-separated doubles, parsed independently of the reader under test.
@@ -335,12 +336,6 @@ std::string AstmFile(int num_points, int rows) {
          testing::Lines(text, 21, 22 + rows);
 }
 
-std::string Replace(std::string text, const std::string& from, const std::string& to) {
-  const size_t at = text.find(from);
-  if (at == std::string::npos) std::abort();  // a broken test, not a broken reader
-  return text.replace(at, from.size(), to);
-}
-
 std::vector<HostileCase> AstmHostileCases() {
   const std::string good = AstmFile(3, 3);  // rows on lines 23, 24, 25
   const std::string row25 = testing::Lines(good, 25, 25);
@@ -348,20 +343,20 @@ std::vector<HostileCase> AstmHostileCases() {
       {"empty.astm", "", 1},
       {"truncated-rows.astm", AstmFile(1439, 3), 25},
       {"truncated-mid-row.astm", good.substr(0, good.size() - row25.size() / 2), 25},
-      {"wrong-vars.astm", Replace(good, "VARS theta_i,phi_i", "VARS phi_i,theta_i"), 21},
-      {"vars-not-wavelength.astm", Replace(good, ",700nm", ",BRDF"), 21},
-      {"vars-decreasing.astm", Replace(good, "400nm,410nm", "410nm,400nm"), 21},
-      {"no-num-points.astm", Replace(good, "NUM_POINTS 3\n", "\n"), 23},
-      {"huge-num-points.astm", Replace(good, "NUM_POINTS 3", "NUM_POINTS 999999999999"), 20},
-      {"too-many-rows.astm", Replace(good, "NUM_POINTS 3", "NUM_POINTS 2"), 25},
-      {"columns.astm", Replace(good, ",0.001869\n", "\n"), 24},
-      {"non-number.astm", Replace(good, "0.001945", "0.00l945"), 24},
-      {"nan.astm", Replace(good, "0.001945", "nan"), 24},
-      {"inf.astm", Replace(good, "0.001945", "inf"), 24},
+      {"wrong-vars.astm", ReplaceFirst(good, "VARS theta_i,phi_i", "VARS phi_i,theta_i"), 21},
+      {"vars-not-wavelength.astm", ReplaceFirst(good, ",700nm", ",BRDF"), 21},
+      {"vars-decreasing.astm", ReplaceFirst(good, "400nm,410nm", "410nm,400nm"), 21},
+      {"no-num-points.astm", ReplaceFirst(good, "NUM_POINTS 3\n", "\n"), 23},
+      {"huge-num-points.astm", ReplaceFirst(good, "NUM_POINTS 3", "NUM_POINTS 999999999999"), 20},
+      {"too-many-rows.astm", ReplaceFirst(good, "NUM_POINTS 3", "NUM_POINTS 2"), 25},
+      {"columns.astm", ReplaceFirst(good, ",0.001869\n", "\n"), 24},
+      {"non-number.astm", ReplaceFirst(good, "0.001945", "0.00l945"), 24},
+      {"nan.astm", ReplaceFirst(good, "0.001945", "nan"), 24},
+      {"inf.astm", ReplaceFirst(good, "0.001945", "inf"), 24},
       {"theta-out-of-range.astm",
-       Replace(good, "0.698132,0.000000,0.427512", "0.698132,0.000000,1.6"), 24},
-      {"degrees-not-radians.astm", Replace(good, "0.349066,0.000000", "20,0.000000"), 25},
-      {"phi-out-of-range.astm", Replace(good, "0.427512,-0.261799", "0.427512,-7.0"), 24},
+       ReplaceFirst(good, "0.698132,0.000000,0.427512", "0.698132,0.000000,1.6"), 24},
+      {"degrees-not-radians.astm", ReplaceFirst(good, "0.349066,0.000000", "20,0.000000"), 25},
+      {"phi-out-of-range.astm", ReplaceFirst(good, "0.427512,-0.261799", "0.427512,-7.0"), 24},
   };
 }
 
@@ -401,17 +396,17 @@ std::vector<HostileCase> PbrtHostileCases() {
       {"comments-only.brdf", "# num wls\r\n", 1},
       {"truncated-record.brdf", good.substr(0, good.size() - record16.size() / 2), 16},
       {"truncated-wavelengths.brdf", testing::Lines(good, 1, 9), 9},
-      {"zero-wavelengths.brdf", Replace(good, "# num wls\r\n31", "# num wls\r\n0"), 6},
-      {"too-many-wavelengths.brdf", Replace(good, "# num wls\r\n31", "# num wls\r\n5000"), 6},
-      {"count-not-a-number.brdf", Replace(good, "# num wls\r\n31", "# num wls\r\nthirty"), 6},
-      {"wavelengths-decreasing.brdf", Replace(good, "400 410", "410 400"), 9},
-      {"short-line.brdf", Replace(good, " 0.001869\r\n", "\r\n"), 15},
-      {"long-line.brdf", Replace(good, " 0.001869\r\n", " 0.001869 0.5\r\n"), 15},
-      {"non-number.brdf", Replace(good, "0.001945", "0.00l945"), 15},
-      {"nan.brdf", Replace(good, "0.001945", "NaN"), 15},
+      {"zero-wavelengths.brdf", ReplaceFirst(good, "# num wls\r\n31", "# num wls\r\n0"), 6},
+      {"too-many-wavelengths.brdf", ReplaceFirst(good, "# num wls\r\n31", "# num wls\r\n5000"), 6},
+      {"count-not-a-number.brdf", ReplaceFirst(good, "# num wls\r\n31", "# num wls\r\nthirty"), 6},
+      {"wavelengths-decreasing.brdf", ReplaceFirst(good, "400 410", "410 400"), 9},
+      {"short-line.brdf", ReplaceFirst(good, " 0.001869\r\n", "\r\n"), 15},
+      {"long-line.brdf", ReplaceFirst(good, " 0.001869\r\n", " 0.001869 0.5\r\n"), 15},
+      {"non-number.brdf", ReplaceFirst(good, "0.001945", "0.00l945"), 15},
+      {"nan.brdf", ReplaceFirst(good, "0.001945", "NaN"), 15},
       {"theta-out-of-range.brdf",
-       Replace(good, "0.698132 0.000000 0.427512", "0.698132 0.000000 -0.5"), 15},
-      {"degrees-not-radians.brdf", Replace(good, "0.349066 0.000000", "20 0.000000"), 16},
+       ReplaceFirst(good, "0.698132 0.000000 0.427512", "0.698132 0.000000 -0.5"), 15},
+      {"degrees-not-radians.brdf", ReplaceFirst(good, "0.349066 0.000000", "20 0.000000"), 16},
       {"no-records.brdf", no_records, 13},
   };
 }

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/angles.h"
+#include "fitters/fit.h"
 
 namespace brdf::testing {
 
@@ -100,6 +101,33 @@ Measurement ScatteredSamplesOf(const Model& model, double theta_o_step, double p
     }
   }
   return measurement;
+}
+
+std::string ReplaceFirst(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  if (at == std::string::npos) std::abort();
+  return text.replace(at, from.size(), to);
+}
+
+Vec3 RandomUpperDirection(std::mt19937* rng) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const double cos_theta = 1.0 - uniform(*rng);
+  const double phi = 2.0 * kPi * uniform(*rng);
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  return Vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta);
+}
+
+bool HasWarning(const fitters::FitResult& fit, const std::string& prefix) {
+  for (const std::string& warning : fit.warnings) {
+    if (warning.rfind(prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
+std::string AllWarnings(const fitters::FitResult& fit) {
+  std::string text;
+  for (const std::string& warning : fit.warnings) text += "\n  " + warning;
+  return text;
 }
 
 }  // namespace brdf::testing

@@ -2,10 +2,16 @@
 // `brdf` binary as a user would.
 #pragma once
 
+#include <random>
 #include <string>
 
+#include "core/angles.h"
 #include "core/measurement.h"
 #include "models/registry.h"
+
+namespace brdf::fitters {
+struct FitResult;
+}
 
 namespace brdf::testing {
 
@@ -38,6 +44,18 @@ std::string ReadFileText(const std::string& path);
 std::string Lines(const std::string& text, int first, int last);
 // Number of '\n' in `text`.
 int CountLines(const std::string& text);
+// `text` with the first occurrence of `from` replaced by `to`; aborts when there is none (a
+// broken test, not a broken reader).
+std::string ReplaceFirst(std::string text, const std::string& from, const std::string& to);
+
+// Uniform direction on the upper hemisphere (z = cos(theta) uniform in (0, 1]: never exactly on
+// the horizon).
+Vec3 RandomUpperDirection(std::mt19937* rng);
+
+// Whether one of the fit's warnings begins with `prefix`.
+bool HasWarning(const fitters::FitResult& fit, const std::string& prefix);
+// The fit's warnings, each on a line of its own, for a failed assertion's message.
+std::string AllWarnings(const fitters::FitResult& fit);
 
 struct CommandResult {
   int exit_status = -1;  // -1 when killed by a signal
