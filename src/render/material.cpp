@@ -376,7 +376,7 @@ class TabulatedMaterial : public Material {
       u = u >= T(-0.5) ? std::min(u, T(kBins)) : T(-0.5);
       const int below = static_cast<int>(u + T(1)) - 1;  // -1..kBins
       const T fraction = u - T(below);
-      t[d] = (fraction >= T(0)) & (fraction <= T(1)) ? fraction : T(0);  // NaN: any corner
+      t[d] = ((fraction >= T(0)) & (fraction <= T(1))) ? fraction : T(0);  // NaN: any corner
       index = index * kPadded + below + 1;
     }
     for (int corner = 0; corner < 8; ++corner) {
