@@ -15,7 +15,7 @@
 #include "core/colour.h"
 #include "core/enum_names.h"
 #include "core/errors.h"
-#include "core/huge_pages.h"
+#include "core/free_pages.h"
 #include "io/merl.h"
 
 namespace brdf::fitters {
@@ -87,7 +87,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
         return partial;
       },
       [](size_t a, size_t b) { return a + b; });
-  ReserveHugePages(&prepared.samples, count);
+  prepared.samples.reserve(count);
   const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
   if (per_sample_columns) source_index.reserve(count);
   for (size_t k = 0; k < measurement.samples.size(); ++k) {

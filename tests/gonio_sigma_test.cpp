@@ -20,8 +20,8 @@
 namespace brdf::gonio {
 namespace {
 
-using testing::AllWarnings;
-using testing::HasWarning;
+using brdf::testing::AllWarnings;
+using brdf::testing::HasWarning;
 
 Measurement MeasureMatte(const Instrument& instrument) {
   MeasureOptions options;

@@ -29,7 +29,7 @@ std::string Int32(int32_t value) {
 // A file the command line must reject: `command` holds {} where the path goes ({out} becomes
 // an output path in the scratch directory); `position` is
 // "line", "byte" or "" (no position: the path itself is the problem).
-struct HostileCase {
+struct HostileInputCase {
   std::string name, contents, command, position;
 };
 
@@ -51,9 +51,9 @@ std::string Substitute(std::string command, const std::string& path) {
   return command.replace(at, 2, "'" + path + "'");
 }
 
-void RunCases(const std::vector<HostileCase>& cases) {
+void RunCases(const std::vector<HostileInputCase>& cases) {
   ScratchDir dir;
-  for (const HostileCase& c : cases) {
+  for (const HostileInputCase& c : cases) {
     const std::string path = dir.Write(c.name, c.contents);
     std::string command = c.command;
     const size_t out = command.find("{out}");

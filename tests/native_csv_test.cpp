@@ -60,7 +60,7 @@ TEST(NativeCsv, AnglesAreDegreesInTheFrameOfDesign) {
   EXPECT_EQ(read.samples[0].value[2], 0.125);
 }
 
-struct HostileCase {
+struct CsvHostileCase {
   const char* name;
   std::string contents;
   const char* where;  // expected in the message, e.g. "line 4"
@@ -69,7 +69,7 @@ struct HostileCase {
 TEST(NativeCsv, HostileInputsNameFileAndLine) {
   ScratchDir dir;
   const std::string header(kHeader);
-  const std::vector<HostileCase> cases = {
+  const std::vector<CsvHostileCase> cases = {
       {"wrong-magic.csv", "# some other v1\n" + header.substr(25), "line 1"},
       {"no-header.csv", "# brdfkit measurement v1\n# sample: x\n", "line 2"},
       {"bad-header.csv",
@@ -90,7 +90,7 @@ TEST(NativeCsv, HostileInputsNameFileAndLine) {
        "1,0,2,0,0.1,0.1,0.1,0.1,-0.1,0.1\n",
        "line 3"},
   };
-  for (const HostileCase& hostile : cases) {
+  for (const CsvHostileCase& hostile : cases) {
     const std::string path = dir.Write(hostile.name, hostile.contents);
     try {
       ReadMeasurement(path);

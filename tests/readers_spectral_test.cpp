@@ -286,7 +286,7 @@ TEST(Cornell, DirectionsAreAboveTheSurfaceAndColoursPlausible) {
 // Hostile inputs. Each case names the expected line; the reader must throw an InputError whose
 // message names the file and that line, and `brdf info` must exit 2 with that one line.
 
-struct HostileCase {
+struct SpectralHostileCase {
   const char* name;  // file name, with the extension that routes it to the reader
   std::string contents;
   int line;  // expected "line N"
@@ -294,9 +294,9 @@ struct HostileCase {
 
 using Reader = Measurement (*)(const std::string&, const ReadOptions&);
 
-void ExpectRejected(Reader read, const std::vector<HostileCase>& cases) {
+void ExpectRejected(Reader read, const std::vector<SpectralHostileCase>& cases) {
   ScratchDir dir;
-  for (const HostileCase& hostile : cases) {
+  for (const SpectralHostileCase& hostile : cases) {
     SCOPED_TRACE(hostile.name);
     const std::string path = dir.Write(hostile.name, hostile.contents);
     const std::string where = "line " + std::to_string(hostile.line) + ":";
@@ -313,9 +313,9 @@ void ExpectRejected(Reader read, const std::vector<HostileCase>& cases) {
 
 // Through the command line: exit status 2, exactly one line on stderr naming file and line.
 // An empty file is refused before any reader sees it, at byte 0.
-void ExpectCliRejects(const std::vector<HostileCase>& cases) {
+void ExpectCliRejects(const std::vector<SpectralHostileCase>& cases) {
   ScratchDir dir;
-  for (const HostileCase& hostile : cases) {
+  for (const SpectralHostileCase& hostile : cases) {
     SCOPED_TRACE(hostile.name);
     const std::string path = dir.Write(hostile.name, hostile.contents);
     const testing::CommandResult result = RunBrdf("info '" + path + "'");
@@ -336,7 +336,7 @@ std::string AstmFile(int num_points, int rows) {
          testing::Lines(text, 21, 22 + rows);
 }
 
-std::vector<HostileCase> AstmHostileCases() {
+std::vector<SpectralHostileCase> AstmHostileCases() {
   const std::string good = AstmFile(3, 3);  // rows on lines 23, 24, 25
   const std::string row25 = testing::Lines(good, 25, 25);
   return {
@@ -387,7 +387,7 @@ std::string PbrtFile(int records) {
                         13 + records);
 }
 
-std::vector<HostileCase> PbrtHostileCases() {
+std::vector<SpectralHostileCase> PbrtHostileCases() {
   const std::string good = PbrtFile(3);  // records on lines 14, 15, 16
   const std::string record16 = testing::Lines(good, 16, 16);
   const std::string no_records = PbrtFile(0);

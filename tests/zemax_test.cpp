@@ -218,12 +218,12 @@ TEST(Zemax, AsymmetricalAndNormalIncidence) {
 // 13/14 ScatterRadial, 16 Monochrome, 17 DataBegin, 18 TIS, 19-37 rows, 38 TIS, ...,
 // 278 DataEnd).
 
-struct HostileCase {
+struct ZemaxHostileCase {
   const char* name;
   std::string contents;
   int line;
 };
-std::vector<HostileCase> HostileCases() {
+std::vector<ZemaxHostileCase> HostileCases() {
   const std::string good = testing::ReadFileText(DataPath(kRealFile));
   const std::string line30 = testing::Lines(good, 30, 30);
   return {
@@ -260,7 +260,7 @@ std::vector<HostileCase> HostileCases() {
 
 TEST(Zemax, HostileInputsNameFileAndLine) {
   ScratchDir dir;
-  for (const HostileCase& hostile : HostileCases()) {
+  for (const ZemaxHostileCase& hostile : HostileCases()) {
     SCOPED_TRACE(hostile.name);
     const std::string path = dir.Write(hostile.name, hostile.contents);
     try {
@@ -279,7 +279,7 @@ TEST(Zemax, HostileInputsNameFileAndLine) {
 // the line (an empty file is refused before the reader, at byte 0).
 TEST(Zemax, HostileInputsFailTheCliWithOneLine) {
   ScratchDir dir;
-  for (const HostileCase& hostile : HostileCases()) {
+  for (const ZemaxHostileCase& hostile : HostileCases()) {
     SCOPED_TRACE(hostile.name);
     const std::string path = dir.Write(hostile.name, hostile.contents);
     const testing::CommandResult result = RunBrdf("info '" + path + "'");

@@ -10,7 +10,6 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
-#include "core/huge_pages.h"
 #include "core/text.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
@@ -91,10 +90,7 @@ double MerlTable::CellMeasure(const Vec3& wi, const Vec3& wo) {
 
 const Rgb MerlTable::kScale(1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0);
 
-MerlTable::MerlTable() {
-  ReserveHugePages(&raw_, 3 * kCells);
-  raw_.assign(3 * kCells, -1.0);
-}
+MerlTable::MerlTable() : raw_(3 * kCells, -1.0) {}
 
 int MerlTable::ThetaHalfIndex(double theta_h) {
   if (theta_h <= 0.0) return 0;
@@ -231,7 +227,6 @@ Measurement MerlTable::ToMeasurement() const {
       tabulate(kPhiDiffBins, [](int k) { return CellCentre(0, 0, k).phi_d; });
 
   Measurement measurement;
-  ReserveHugePages(&measurement.samples, kCells);
   measurement.samples.resize(kCells);
   tbb::parallel_for(0, kThetaHalfBins, [&](int theta_h_index) {
     const SinCos h = theta_h[theta_h_index];
