@@ -15,7 +15,7 @@
 #include "core/colour.h"
 #include "core/enum_names.h"
 #include "core/errors.h"
-#include "core/free_pages.h"
+#include "core/pages.h"
 #include "io/merl.h"
 
 namespace brdf::fitters {

@@ -1,6 +1,6 @@
 #include "cli/fit_options.h"
 
-#include "core/free_pages.h"
+#include "core/pages.h"
 #include "io/formats.h"
 #include "models/registry.h"
 

@@ -6,6 +6,7 @@
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "core/pages.h"
 #include "core/text.h"
 #include "hdr/image_files.h"
 
@@ -40,6 +41,10 @@ Environment::Environment(Image image)
       total += sin_theta * width;
     }
   }
+  // Draws and lookups land anywhere in the table (24 bytes a pixel: 12.6 MB for a 1k map), so
+  // with 4 KiB pages nearly every one also misses the TLB; huge pages (when the system has them)
+  // cover it with a few entries. The values are the same.
+  ReserveHugePages(&texels_, static_cast<size_t>(count));
   texels_.resize(count);
   for (int64_t i = 0; i < count; ++i) {
     for (int c = 0; c < 3; ++c) texels_[i].rgb[c] = image.rgba[i * Image::kChannels + c];

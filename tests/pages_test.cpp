@@ -1,5 +1,5 @@
-// ReturnFreePages (core/free_pages.h): a freed block inside the heap stops counting as resident.
-#include "core/free_pages.h"
+// ReturnFreePages (core/pages.h): a freed block inside the heap stops counting as resident.
+#include "core/pages.h"
 
 #include <gtest/gtest.h>
 
