@@ -3,11 +3,11 @@
 //
 // Only a table whose reads land anywhere in it is advised for transparent huge pages: with 4 KiB
 // pages nearly every read of the renderer's 12.6 MB environment table also missed the TLB (the
-// renders take 2-3 % longer without the advice; docs/performance.md). Buffers written once from
-// the start and then streamed, as a fit's are, are not: on a virtual machine whose balloon
-// reports free memory to the host (order-9 blocks, Linux's free page reporting), every fresh
-// huge page is one the host has taken back, and a MERL-table fit started two seconds after the
-// last large process spent 0.8 s of system time faulting its 250 MB (1.25 s in all, against
+// renders took 2-5 % longer without the advice; docs/performance.md, *Huge pages*). Buffers written
+// once from the start and then streamed, as a fit's are, are not: on a virtual machine whose
+// balloon reports free memory to the host (order-9 blocks, Linux's free page reporting), every
+// fresh huge page is one the host has taken back, and a MERL-table fit started two seconds after
+// the last large process spent 0.8 s of system time faulting its 250 MB (1.25 s in all, against
 // 0.62 s without the advice; docs/performance.md, *Huge pages*). Only the timing changes, never a
 // value.
 #pragma once
@@ -17,24 +17,21 @@
 
 namespace brdf {
 
-// reserve(count) with the reserved storage advised for huge pages (before any element is
-// constructed, so before any page is touched); the advice is a no-op below a few MiB, or where
-// the system has none.
-template <typename T>
-void ReserveHugePages(std::vector<T>* buffer, size_t count);
-
-// Hands the free pages of the heap back to the system (glibc's malloc_trim; elsewhere nothing).
-// `brdf` keeps freed memory for reuse (src/cli/main.cpp); after it lets go of a large buffer
-// that no later one of its size would reuse, this lowers the peak that follows.
-void ReturnFreePages();
-
-// Advises the whole 2 MiB regions inside [data, data + bytes) for huge pages (ReserveHugePages).
+// Advises the whole 2 MiB regions inside [data, data + bytes) for huge pages: a no-op below a
+// few MiB, or where the system has no such advice.
 void AdviseHugePages(const void* data, size_t bytes);
 
+// reserve(count) with the reserved storage advised for huge pages (before any element is
+// constructed, so before any page is touched).
 template <typename T>
 void ReserveHugePages(std::vector<T>* buffer, size_t count) {
   buffer->reserve(count);
   AdviseHugePages(buffer->data(), buffer->capacity() * sizeof(T));
 }
+
+// Hands the free pages of the heap back to the system (glibc's malloc_trim; elsewhere nothing).
+// `brdf` keeps freed memory for reuse (src/cli/main.cpp); after it lets go of a large buffer
+// that no later one of its size would reuse, this lowers the peak that follows.
+void ReturnFreePages();
 
 }  // namespace brdf
