@@ -13,6 +13,7 @@
 
 #include "core/angles.h"
 #include "core/format.h"
+#include "core/pages.h"
 #include "fitters/parameterization.h"
 
 namespace brdf::fitters {
@@ -361,7 +362,9 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
   std::partial_sum(first_usable.begin(), first_usable.end(), first_usable.begin());
   const size_t usable = first_usable[chunks];
   // |z| of each channel of each usable sample, in file order; kNoScore where a channel has none.
-  std::vector<double> scores(3 * usable, kNoScore);
+  std::vector<double> scores;
+  ReservePrefaulted(&scores, 3 * usable);  // fresh pages, filled on one thread just below
+  scores.assign(3 * usable, kNoScore);
   tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
     const size_t end = std::min(samples.size(), (chunk + 1) * kSamplesPerChunk);
     size_t u = first_usable[chunk];

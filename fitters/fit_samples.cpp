@@ -25,6 +25,8 @@ constexpr int kNearestNeighbours = 4;
 // Larger incidence groups would make the O(n^2) neighbour search slow; they keep equal weights
 // (and the report says so).
 constexpr size_t kMaxNeighbourGroup = 4096;
+// Measurement samples per chunk of PrepareSamples' parallel selection.
+constexpr size_t kPrepareChunk = 16384;
 
 // Samples written from a MERL table into another format (native CSV keeps the "grid"
 // metadata); a measurement read with its table asks the table instead (Measurement::tabulated).
@@ -76,33 +78,42 @@ void Release(PreparedSamples* prepared) {
 
 PreparedSamples PrepareSamples(const Measurement& measurement) {
   PreparedSamples prepared;
-  std::vector<size_t> source_index;
-  // Sized once: growing a vector of a million samples by doubling would hold the old and the
-  // new copy at once and clear pages for both.
+  // The usable samples, in file order, copied in parallel: each chunk of the measurement counts
+  // its usable ones, the running sum of the counts places each chunk's copies, and the vector is
+  // sized once (growing a vector of a million samples by doubling would hold the old and the new
+  // copy at once and fault pages for both).
   const std::vector<Sample>& source = measurement.samples;
-  const size_t count = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, source.size()), size_t{0},
-      [&](const tbb::blocked_range<size_t>& range, size_t partial) {
-        for (size_t k = range.begin(); k < range.end(); ++k) partial += UsableForFit(source[k]);
-        return partial;
-      },
-      [](size_t a, size_t b) { return a + b; });
-  prepared.samples.reserve(count);
-  const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
-  if (per_sample_columns) source_index.reserve(count);
-  for (size_t k = 0; k < measurement.samples.size(); ++k) {
-    const Sample& sample = measurement.samples[k];
-    if (!UsableForFit(sample)) {
-      ++(sample.missing ? prepared.skipped_missing : prepared.skipped_invalid);
-      continue;
+  const size_t chunks = (source.size() + kPrepareChunk - 1) / kPrepareChunk;
+  std::vector<size_t> first_usable(chunks + 1, 0), missing(chunks, 0);
+  tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
+    const size_t end = std::min(source.size(), (chunk + 1) * kPrepareChunk);
+    for (size_t k = chunk * kPrepareChunk; k < end; ++k) {
+      first_usable[chunk + 1] += UsableForFit(source[k]);
+      missing[chunk] += source[k].missing;
     }
-    FitSample fit_sample;
-    fit_sample.wi = sample.wi;
-    fit_sample.wo = sample.wo;
-    fit_sample.value = sample.value;
-    prepared.samples.push_back(fit_sample);
-    if (per_sample_columns) source_index.push_back(k);
-  }
+  });
+  std::partial_sum(first_usable.begin(), first_usable.end(), first_usable.begin());
+  const size_t count = first_usable[chunks];
+  prepared.skipped_missing = std::accumulate(missing.begin(), missing.end(), size_t{0});
+  prepared.skipped_invalid = source.size() - count - prepared.skipped_missing;
+  ReservePrefaulted(&prepared.samples, count);
+  prepared.samples.resize(count);
+  const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
+  std::vector<size_t> source_index(per_sample_columns ? count : 0);
+  tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
+    const size_t end = std::min(source.size(), (chunk + 1) * kPrepareChunk);
+    size_t next = first_usable[chunk];
+    for (size_t k = chunk * kPrepareChunk; k < end; ++k) {
+      const Sample& sample = source[k];
+      if (!UsableForFit(sample)) continue;
+      FitSample& fit_sample = prepared.samples[next];
+      fit_sample.wi = sample.wi;
+      fit_sample.wo = sample.wo;
+      fit_sample.value = sample.value;
+      if (per_sample_columns) source_index[next] = k;
+      ++next;
+    }
+  });
   std::vector<FitSample>& samples = prepared.samples;
   if (samples.empty()) {
     throw InputError(measurement.source, "no usable samples to fit (all missing or invalid)");

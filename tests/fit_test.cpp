@@ -231,6 +231,61 @@ TEST(Fit, LobeOnMatteDataIsReportedNotIdentifiable) {
   EXPECT_LT(fit.model.Param("rho_s", 0), 1e-6);
 }
 
+// PrepareSamples selects in parallel chunks: on a measurement of many chunks with missing,
+// non-finite and below-horizon samples scattered through it, it keeps exactly the usable ones in
+// file order, counts the rest, and pairs each with its own weight and sigma.
+TEST(Fit, PreparedSamplesAreTheUsableOnesInFileOrderWithTheirOwnColumns) {
+  Measurement measurement;
+  measurement.metadata[kWeightingKey] = kEqualWeighting;  // weights: the file's column alone
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  size_t missing = 0, invalid = 0;
+  std::vector<size_t> usable;
+  for (size_t k = 0; k < 70001; ++k) {
+    Sample sample;
+    sample.wi = Vec3(0.1, 0.2, 0.3 + uniform(random)).normalized();
+    sample.wo = Vec3(-0.2, 0.1, 0.3 + uniform(random)).normalized();
+    sample.value = Rgb(uniform(random), uniform(random), uniform(random));
+    const double kind = uniform(random);
+    if (kind < 0.1) {
+      sample.missing = true;
+      ++missing;
+    } else if (kind < 0.15) {
+      sample.value[1] = std::nan("");
+      ++invalid;
+    } else if (kind < 0.2) {
+      sample.wo.z() = -sample.wo.z();
+      ++invalid;
+    } else {
+      usable.push_back(k);
+    }
+    measurement.samples.push_back(sample);
+    measurement.weight.push_back(0.5 + uniform(random));
+    measurement.sigma.push_back(Rgb(0.1, 0.2, 0.3) * (1.0 + uniform(random)));
+  }
+  const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement);
+  EXPECT_EQ(prepared.skipped_missing, missing);
+  EXPECT_EQ(prepared.skipped_invalid, invalid);
+  ASSERT_EQ(prepared.samples.size(), usable.size());
+  // Weights are the file's, normalized to a mean of 1: their ratio to it is one constant.
+  const double ratio = prepared.samples[0].weight / measurement.weight[usable[0]];
+  const Rgb pooled_sigma = prepared.samples[0].scale * measurement.sigma[usable[0]] /
+                           std::sqrt(prepared.samples[0].weight);
+  for (size_t j = 0; j < usable.size(); ++j) {
+    const fitters::FitSample& fit_sample = prepared.samples[j];
+    const Sample& sample = measurement.samples[usable[j]];
+    ASSERT_EQ(fit_sample.wi, sample.wi) << j;
+    ASSERT_EQ(fit_sample.wo, sample.wo) << j;
+    ASSERT_TRUE((fit_sample.value == sample.value).all()) << j;
+    ASSERT_NEAR(fit_sample.weight / measurement.weight[usable[j]], ratio, 1e-12 * ratio) << j;
+    // A noisier channel counts less: scale = sqrt(weight) mean_sigma / sigma, so scale times
+    // sigma over sqrt(weight) is one constant a channel.
+    const Rgb pooled =
+        fit_sample.scale * measurement.sigma[usable[j]] / std::sqrt(fit_sample.weight);
+    for (int c = 0; c < 3; ++c) ASSERT_NEAR(pooled[c], pooled_sigma[c], 1e-12) << j;
+  }
+}
+
 // The residual's automatic derivatives agree with finite differences through the
 // parameterization (ceres::GradientChecker).
 TEST(Fit, ResidualGradientsMatchFiniteDifferences) {

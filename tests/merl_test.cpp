@@ -226,6 +226,36 @@ TEST(Merl, ConvertTabulatesAModel) {
   EXPECT_NE(neither.err.find("not a model string"), std::string::npos) << neither.err;
 }
 
+// Read keeps the values in the file's mapped pages (core/mapped_file.h): every cell reads back
+// as written, a write-back gives the same bytes, and changing a cell of the read table copies
+// the values first and leaves the file as it was.
+TEST(Merl, AReadTableHoldsTheFilesValuesAndChangesOnlyItsOwnCopy) {
+  ScratchDir dir;
+  MerlTable written;
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> value(-1.0, 4000.0);
+  for (int c = 0; c < 3; ++c) {
+    for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) written.raw(c, cell) = value(random);
+  }
+  const std::string path = dir.File("random.binary");
+  written.Write(path);
+  MerlTable read = MerlTable::Read(path);
+  for (int c = 0; c < 3; ++c) {
+    for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) {
+      ASSERT_EQ(read.raw(c, cell), written.raw(c, cell)) << "channel " << c << ", cell " << cell;
+    }
+  }
+  const std::string copy = dir.File("copy.binary");
+  read.Write(copy);
+  EXPECT_EQ(testing::ReadFileText(copy), testing::ReadFileText(path));
+
+  const int64_t cell = MerlTable::CellIndex(10, 20, 30);
+  read.raw(1, cell) = 1234.5;
+  EXPECT_EQ(read.raw(1, cell), 1234.5);
+  EXPECT_EQ(read.raw(2, cell), written.raw(2, cell));
+  EXPECT_EQ(MerlTable::Read(path).raw(1, cell), written.raw(1, cell));
+}
+
 TEST(Merl, HostileFilesNameTheByte) {
   ScratchDir dir;
   MerlTable table;

@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/pages.h"
 #include "core/text.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
@@ -90,7 +91,14 @@ double MerlTable::CellMeasure(const Vec3& wi, const Vec3& wo) {
 
 const Rgb MerlTable::kScale(1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0);
 
-MerlTable::MerlTable() : raw_(3 * kCells, -1.0) {}
+MerlTable::MerlTable() : owned_(3 * kCells, -1.0) {}
+
+void MerlTable::Own() {
+  std::vector<double> values(3 * kCells);
+  std::memcpy(values.data(), file_->data() + kHeaderBytes, values.size() * sizeof(double));
+  owned_ = std::move(values);
+  file_ = nullptr;
+}
 
 int MerlTable::ThetaHalfIndex(double theta_h) {
   if (theta_h <= 0.0) return 0;
@@ -141,7 +149,7 @@ Rgb MerlTable::Lookup(const Vec3& wi, const Vec3& wo) const {
 
 MerlTable MerlTable::Read(const std::string& path) {
   // The size is checked against the header before anything large is allocated, so a hostile
-  // file never drives an allocation; the doubles are then read straight into the table.
+  // file never drives an allocation; the doubles are then mapped, or read into the table.
   const int64_t size = RegularFileSize(path);
   std::ifstream stream(path, std::ios::binary);
   if (!stream) throw InputError(path, "cannot open for reading");
@@ -164,15 +172,23 @@ MerlTable MerlTable::Read(const std::string& path) {
                         " bytes, the file has " + std::to_string(size) +
                         (size < kFileBytes ? " (truncated)" : ""));
   }
-  MerlTable table;
-  const std::streamsize payload = static_cast<std::streamsize>(table.raw_.size() * 8);
-  stream.read(reinterpret_cast<char*>(table.raw_.data()), payload);
-  if (stream.gcount() != payload) {
-    throw ByteError(path, kHeaderBytes + stream.gcount(), "read failed (file changed?)");
+  MerlTable table(Unfilled{});
+  table.file_ = MappedFile::Open(path);
+  if (table.file_ != nullptr && table.file_->size() != static_cast<size_t>(kFileBytes)) {
+    throw ByteError(path, static_cast<int64_t>(table.file_->size()), "file changed while read");
   }
-  for (size_t k = 0; k < table.raw_.size(); ++k) {
-    if (!std::isfinite(table.raw_[k])) {
-      throw ByteError(path, kHeaderBytes + 8 * static_cast<int64_t>(k),
+  if (table.file_ == nullptr) {  // no mapping here: the doubles read straight into the table
+    table.owned_.resize(3 * kCells);
+    const std::streamsize payload = static_cast<std::streamsize>(table.owned_.size() * 8);
+    stream.read(reinterpret_cast<char*>(table.owned_.data()), payload);
+    if (stream.gcount() != payload) {
+      throw ByteError(path, kHeaderBytes + stream.gcount(), "read failed (file changed?)");
+    }
+  }
+  for (int channel = 0; channel < 3; ++channel) {
+    for (int64_t cell = 0; cell < kCells; ++cell) {
+      if (std::isfinite(table.raw(channel, cell))) continue;
+      throw ByteError(path, kHeaderBytes + 8 * (channel * kCells + cell),
                       "value is NaN or infinite, expected a finite BRDF value (negative for "
                       "missing)");
     }
@@ -185,8 +201,10 @@ void MerlTable::Write(const std::string& path) const {
       path,
       [&](std::ostream& out) {
         out.write(reinterpret_cast<const char*>(kDimensions), sizeof(kDimensions));
-        out.write(reinterpret_cast<const char*>(raw_.data()),
-                  static_cast<std::streamsize>(raw_.size() * sizeof(double)));
+        const char* values = file_ != nullptr
+                                 ? reinterpret_cast<const char*>(file_->data() + kHeaderBytes)
+                                 : reinterpret_cast<const char*>(owned_.data());
+        out.write(values, static_cast<std::streamsize>(3 * kCells * sizeof(double)));
       },
       /*binary=*/true);
 }
@@ -227,6 +245,8 @@ Measurement MerlTable::ToMeasurement() const {
       tabulate(kPhiDiffBins, [](int k) { return CellCentre(0, 0, k).phi_d; });
 
   Measurement measurement;
+  // Faulted in from both cores first: the resize would touch 117 MB of fresh pages on one.
+  ReservePrefaulted(&measurement.samples, kCells);
   measurement.samples.resize(kCells);
   tbb::parallel_for(0, kThetaHalfBins, [&](int theta_h_index) {
     const SinCos h = theta_h[theta_h_index];

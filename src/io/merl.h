@@ -8,12 +8,14 @@
 #pragma once
 
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/angles.h"
+#include "core/mapped_file.h"
 #include "core/measurement.h"
 #include "io/formats.h"
 
@@ -34,7 +36,8 @@ class MerlTable {
   MerlTable();
 
   // Reads and validates a file: exact size for the dimensions, dimensions 90 90 180, finite
-  // values. Throws ByteError naming the offset of the first problem.
+  // values. Throws ByteError naming the offset of the first problem. The values stay in the
+  // file's pages where it can be mapped (core/mapped_file.h): nothing is copied.
   static MerlTable Read(const std::string& path);
   // Writes the table atomically (temporary file, then rename).
   void Write(const std::string& path) const;
@@ -62,13 +65,30 @@ class MerlTable {
   static double CellMeasure(const Vec3& wi, const Vec3& wo);
 
   // Stored (unscaled) value of a cell; negative means missing.
-  double raw(int channel, int64_t cell) const { return raw_[channel * kCells + cell]; }
-  double& raw(int channel, int64_t cell) { return raw_[channel * kCells + cell]; }
+  double raw(int channel, int64_t cell) const {
+    const int64_t index = channel * kCells + cell;
+    if (file_ == nullptr) return owned_[index];
+    // The file's doubles follow a 12-byte header, so they are not 8-byte aligned in its pages.
+    double value;
+    std::memcpy(&value, file_->data() + kHeaderBytes + 8 * index, sizeof(value));
+    return value;
+  }
+  // A table read from a mapped file copies its values into memory of its own first.
+  double& raw(int channel, int64_t cell) {
+    if (file_ != nullptr) Own();
+    return owned_[channel * kCells + cell];
+  }
   // BRDF (sr^-1) in the cell containing (wi, wo); NaN where the cell is missing.
   Rgb Lookup(const Vec3& wi, const Vec3& wo) const;
 
  private:
-  std::vector<double> raw_;  // 3 * kCells, channel-major as in the file
+  struct Unfilled {};
+  explicit MerlTable(Unfilled) {}
+  void Own();
+  // The stored values, 3 * kCells channel-major as in the file: the mapped file itself (Read),
+  // or else owned_.
+  std::shared_ptr<const MappedFile> file_;
+  std::vector<double> owned_;
 };
 
 // The table as a reader's evaluator (DESIGN §4): nearest-cell lookup (Lookup), NaN in missing
