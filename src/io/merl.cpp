@@ -185,9 +185,10 @@ MerlTable MerlTable::Read(const std::string& path) {
       throw ByteError(path, kHeaderBytes + stream.gcount(), "read failed (file changed?)");
     }
   }
+  const MerlTable& values = table;  // read without copying the mapped values (raw's const form)
   for (int channel = 0; channel < 3; ++channel) {
     for (int64_t cell = 0; cell < kCells; ++cell) {
-      if (std::isfinite(table.raw(channel, cell))) continue;
+      if (std::isfinite(values.raw(channel, cell))) continue;
       throw ByteError(path, kHeaderBytes + 8 * (channel * kCells + cell),
                       "value is NaN or infinite, expected a finite BRDF value (negative for "
                       "missing)");

@@ -78,6 +78,8 @@ class MerlTable {
     if (file_ != nullptr) Own();
     return owned_[channel * kCells + cell];
   }
+  // Whether the values are still the mapped file's pages (Read, where files can be mapped).
+  bool InFilePages() const { return file_ != nullptr; }
   // BRDF (sr^-1) in the cell containing (wi, wo); NaN where the cell is missing.
   Rgb Lookup(const Vec3& wi, const Vec3& wo) const;
 
