@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>  // also defines __GLIBC__ where the C library is glibc
+#include <vector>
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -40,9 +41,21 @@ void PrefaultPages(void* data, size_t bytes) {
   const uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(page - 1);
   if (end <= begin) return;
   const uintptr_t parts = (end - begin + kPart - 1) / kPart;
+  // Memory reused from an earlier buffer (the heap keeps what `brdf` frees) is resident already:
+  // asking the kernel which pages are costs far less than faulting them again, and the parts
+  // that are whole are skipped.
+  std::vector<unsigned char> resident((end - begin) / page);
+  const bool known = mincore(reinterpret_cast<void*>(begin), end - begin, resident.data()) == 0;
+  auto whole = [&](uintptr_t first, uintptr_t last) {
+    return known && std::all_of(resident.begin() + (first - begin) / page,
+                                resident.begin() + (last - begin) / page,
+                                [](unsigned char flags) { return flags & 1; });
+  };
+  if (whole(begin, end)) return;
   tbb::parallel_for(uintptr_t{0}, parts, [&](uintptr_t part) {
     const uintptr_t first = begin + part * kPart;
     const uintptr_t last = std::min(end, first + kPart);
+    if (whole(first, last)) return;
 #if defined(MADV_POPULATE_WRITE)
     // Advice only: an older kernel refuses it, and the loop below faults the pages in instead.
     madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);

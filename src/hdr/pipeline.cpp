@@ -11,6 +11,7 @@
 #include "core/colour.h"
 #include "core/errors.h"
 #include "core/format.h"
+#include "core/pages.h"
 #include "hdr/bloom.h"
 #include "hdr/exposure.h"
 #include "hdr/simd.h"
@@ -88,6 +89,7 @@ Image8 EncodeDisplay(const Image& image, const TransferCurve& transfer) {
   Image8 display;
   display.width = image.width;
   display.height = image.height;
+  ReservePrefaulted(&display.rgb, image.pixel_count() * 3);  // fresh pages: faulted from all cores
   display.rgb.resize(image.pixel_count() * 3);
   tbb::parallel_for(0, image.height, [&](int y) {
     const float* in = image.pixel(0, y);
@@ -317,6 +319,7 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   Image8& display = result.display;
   display.width = width;
   display.height = image.height;
+  ReservePrefaulted(&display.rgb, image.pixel_count() * 3);  // fresh pages: faulted from all cores
   display.rgb.resize(image.pixel_count() * 3);
   const int tasks = (image.height + kRowsPerTask - 1) / kRowsPerTask;
   [[maybe_unused]] const bool avx2 = HdrAvx2Enabled();
