@@ -3,11 +3,11 @@
 //
 // A fresh page is costly on a virtual machine: the guest faults it in, and the host then
 // supplies and clears the memory behind it on its first access. On the 2-core virtual machine
-// of docs/performance.md (*Fresh pages*) a first write to each 4 KiB page of a new 128 MiB
-// block cost 2.7-2.8 ms per MiB on one thread; MADV_POPULATE_WRITE (one call for the range,
-// no fault per page) followed by the first access cost 1.3-1.4 ms per MiB, and on two threads
-// 0.69-0.75 ms per MiB of wall time. A MERL-table fit faults about 250 MB, so a serial first
-// touch of its buffers took about half of its time.
+// of docs/performance.md (*Fresh pages*, bench/page_cost) a first write to each 4 KiB page of a
+// new 128 MiB block cost 2.6 ms per MiB on one thread; MADV_POPULATE_WRITE (one call for the
+// range, no fault per page) followed by the first access 1.3 ms, and both on two threads
+// (PrefaultPages) 0.76 ms per MiB of wall time. A MERL-table fit faults about 250 MB, so a
+// serial first touch of its buffers took about half of its time.
 //
 // Only a table whose reads land anywhere in it is advised for transparent huge pages: with 4 KiB
 // pages nearly every read of the renderer's 12.6 MB environment table also missed the TLB (the

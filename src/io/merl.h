@@ -73,7 +73,8 @@ class MerlTable {
     std::memcpy(&value, file_->data() + kHeaderBytes + 8 * index, sizeof(value));
     return value;
   }
-  // A table read from a mapped file copies its values into memory of its own first.
+  // A table read from a mapped file copies its values into memory of its own first (so the
+  // first write to a mapped table must not race with other reads or writes of it).
   double& raw(int channel, int64_t cell) {
     if (file_ != nullptr) Own();
     return owned_[channel * kCells + cell];
