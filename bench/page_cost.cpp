@@ -125,6 +125,13 @@ int main(int argc, char** argv) {
        }},
       {"PrefaultPages (every core)",
        [&](unsigned char* p) { return timed([&] { brdf::PrefaultPages(p, bytes); }); }},
+      {"huge pages advised, PrefaultPages",
+       [&](unsigned char* p) {
+         return timed([&] {
+           madvise(p, bytes, MADV_HUGEPAGE);
+           brdf::PrefaultPages(p, bytes);
+         });
+       }},
       {"huge pages advised, first write, 1 thread",
        [&](unsigned char* p) {
          return timed([&] {

@@ -6,7 +6,7 @@
 // of docs/performance.md (*Fresh pages*, bench/page_cost) a first write to each 4 KiB page of a
 // new 128 MiB block cost 2.6 ms per MiB on one thread; MADV_POPULATE_WRITE (one call for the
 // range, no fault per page) followed by the first access 1.3 ms, and both on two threads
-// (PrefaultPages) 0.76 ms per MiB of wall time. A MERL-table fit faults about 250 MB, so a
+// (PrefaultPages) 0.71-0.76 ms per MiB of wall time. A MERL-table fit faults about 250 MB, so a
 // serial first touch of its buffers took about half of its time.
 //
 // Only a table whose reads land anywhere in it is advised for transparent huge pages: with 4 KiB
