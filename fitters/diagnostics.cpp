@@ -365,30 +365,24 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
   std::vector<double> scores;
   ReservePrefaulted(&scores, 3 * usable);  // fresh pages, filled on one thread just below
   scores.assign(3 * usable, kNoScore);
-  tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
-    const size_t end = std::min(samples.size(), (chunk + 1) * kSamplesPerChunk);
-    size_t u = first_usable[chunk];
-    for (size_t k = chunk * kSamplesPerChunk; k < end; ++k) {
-      const Sample& sample = samples[k];
-      if (!UsableForFit(sample)) continue;
-      const Rgb f = model.Eval(sample.wi, sample.wo);
-      for (int c = 0; c < 3; ++c) {
-        double difference = sample.value[c] - f[c];
-        if (std::abs(difference) <= kRoundingFloor * largest) difference = 0;
-        double score;
-        if (check.has_sigma) {
-          const double sigma = measurement.sigma[k][c];
-          if (!(sigma > 0) || !std::isfinite(sigma)) continue;
-          score = difference / sigma;
-        } else {
-          // Without sigma, relative residuals: the noise of an instrument that counts photons
-          // grows with the signal, so relative errors are comparable from floor to peak.
-          if (!(f[c] > 0)) continue;
-          score = difference / f[c];
-        }
-        scores[3 * u + c] = std::abs(score);
+  ForEachUsable(samples, first_usable, kSamplesPerChunk, [&](size_t k, size_t u) {
+    const Sample& sample = samples[k];
+    const Rgb f = model.Eval(sample.wi, sample.wo);
+    for (int c = 0; c < 3; ++c) {
+      double difference = sample.value[c] - f[c];
+      if (std::abs(difference) <= kRoundingFloor * largest) difference = 0;
+      double score;
+      if (check.has_sigma) {
+        const double sigma = measurement.sigma[k][c];
+        if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+        score = difference / sigma;
+      } else {
+        // Without sigma, relative residuals: the noise of an instrument that counts photons
+        // grows with the signal, so relative errors are comparable from floor to peak.
+        if (!(f[c] > 0)) continue;
+        score = difference / f[c];
       }
-      ++u;
+      scores[3 * u + c] = std::abs(score);
     }
   });
   std::vector<size_t> top = ScoreHistogram(scores, 48, 0, 0);

@@ -100,19 +100,12 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   prepared.samples.resize(count);
   const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
   std::vector<size_t> source_index(per_sample_columns ? count : 0);
-  tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
-    const size_t end = std::min(source.size(), (chunk + 1) * kPrepareChunk);
-    size_t next = first_usable[chunk];
-    for (size_t k = chunk * kPrepareChunk; k < end; ++k) {
-      const Sample& sample = source[k];
-      if (!UsableForFit(sample)) continue;
-      FitSample& fit_sample = prepared.samples[next];
-      fit_sample.wi = sample.wi;
-      fit_sample.wo = sample.wo;
-      fit_sample.value = sample.value;
-      if (per_sample_columns) source_index[next] = k;
-      ++next;
-    }
+  ForEachUsable(source, first_usable, kPrepareChunk, [&](size_t k, size_t u) {
+    FitSample& fit_sample = prepared.samples[u];
+    fit_sample.wi = source[k].wi;
+    fit_sample.wo = source[k].wo;
+    fit_sample.value = source[k].value;
+    if (per_sample_columns) source_index[u] = k;
   });
   std::vector<FitSample>& samples = prepared.samples;
   if (samples.empty()) {

@@ -2,6 +2,9 @@
 // weighs, and the transformed targets of each loss (DESIGN §6).
 #pragma once
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -48,6 +51,22 @@ inline Rgb LossTarget(Loss loss, const Rgb& value, double cos_theta_i) {
 // Whether a fit uses a measurement's sample: present, finite, both directions above the horizon.
 inline bool UsableForFit(const Sample& sample) {
   return !sample.missing && sample.value.allFinite() && sample.wi.z() > 0 && sample.wo.z() > 0;
+}
+
+// Calls visit(k, u) for every usable sample k of `samples` (UsableForFit), u its place among the
+// usable ones in file order, in parallel over chunks of `chunk_size` samples: first_usable[c] is
+// the count of usable samples before chunk c (the running sum of the chunks' counts). The loops
+// that keep one entry per usable sample (PrepareSamples, the residual check) fill them so.
+template <typename Visit>
+void ForEachUsable(const std::vector<Sample>& samples, const std::vector<size_t>& first_usable,
+                   size_t chunk_size, const Visit& visit) {
+  tbb::parallel_for(size_t{0}, first_usable.size() - 1, [&](size_t chunk) {
+    const size_t end = std::min(samples.size(), (chunk + 1) * chunk_size);
+    size_t u = first_usable[chunk];
+    for (size_t k = chunk * chunk_size; k < end; ++k) {
+      if (UsableForFit(samples[k])) visit(k, u++);
+    }
+  });
 }
 
 struct PreparedSamples {
