@@ -37,6 +37,17 @@ Measurement TabulateOnGrid(const Model& model) {
   }
   return measurement;
 }
+// Every stored value drawn uniformly from [low, high) (negative ones are missing cells).
+MerlTable RandomTable(uint64_t seed, double low, double high) {
+  MerlTable table;
+  std::mt19937_64 random(seed);
+  std::uniform_real_distribution<double> uniform(low, high);
+  for (int c = 0; c < 3; ++c) {
+    for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) table.raw(c, cell) = uniform(random);
+  }
+  return table;
+}
+
 TEST(Merl, FileSizeIsTheDocumentedOne) { EXPECT_EQ(MerlTable::kFileBytes, 34992012); }
 
 TEST(Merl, ThetaHalfIndexIsSquareRootWarped) {
@@ -179,12 +190,7 @@ TEST(Merl, NegativeValuesAreMissingNotData) {
 
 TEST(Merl, ConvertMerlToMerlIsBitExact) {
   ScratchDir dir;
-  MerlTable table;
-  std::mt19937_64 random(7);
-  std::uniform_real_distribution<double> uniform(-0.5, 3000.0);
-  for (int c = 0; c < 3; ++c) {
-    for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) table.raw(c, cell) = uniform(random);
-  }
+  const MerlTable table = RandomTable(7, -0.5, 3000.0);
   const std::string original = dir.File("a.binary"), copy = dir.File("b.binary");
   table.Write(original);
   const testing::CommandResult result =
@@ -231,12 +237,7 @@ TEST(Merl, ConvertTabulatesAModel) {
 // the values first and leaves the file as it was.
 TEST(Merl, AReadTableHoldsTheFilesValuesAndChangesOnlyItsOwnCopy) {
   ScratchDir dir;
-  MerlTable written;
-  std::mt19937_64 random(7);
-  std::uniform_real_distribution<double> value(-1.0, 4000.0);
-  for (int c = 0; c < 3; ++c) {
-    for (int64_t cell = 0; cell < MerlTable::kCells; ++cell) written.raw(c, cell) = value(random);
-  }
+  const MerlTable written = RandomTable(7, -1.0, 4000.0);
   const std::string path = dir.File("random.binary");
   written.Write(path);
   MerlTable read = MerlTable::Read(path);
