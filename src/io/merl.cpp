@@ -175,7 +175,9 @@ MerlTable MerlTable::Read(const std::string& path) {
   MerlTable table(Unfilled{});
   table.file_ = MappedFile::Open(path);
   if (table.file_ != nullptr && table.file_->size() != static_cast<size_t>(kFileBytes)) {
-    throw ByteError(path, static_cast<int64_t>(table.file_->size()), "file changed while read");
+    throw ByteError(path, static_cast<int64_t>(table.file_->size()),
+                    "file changed while read: it now has " + std::to_string(table.file_->size()) +
+                        " bytes, expected " + std::to_string(kFileBytes));
   }
   if (table.file_ == nullptr) {  // no mapping here: the doubles read straight into the table
     table.owned_.resize(3 * kCells);
