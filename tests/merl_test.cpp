@@ -265,6 +265,37 @@ TEST(Merl, AReadTableHoldsTheFilesValuesAndChangesOnlyItsOwnCopy) {
   EXPECT_EQ(MerlTable::Read(path).raw(1, cell), written.raw(1, cell));
 }
 
+// The evaluator a read hands out has values of its own: the file rewritten in place afterwards
+// (truncated first, as most programs write) changes nothing it answers. A reader told that the
+// caller drops the evaluator (a fit) builds none, and the samples are the same.
+TEST(Merl, TheEvaluatorOutlivesItsFileAndAFitReadBuildsNone) {
+  ScratchDir dir;
+  const MerlTable written = RandomTable(11, 0.0, 2000.0);
+  const std::string path = dir.File("rewritten.binary");
+  written.Write(path);
+  const Measurement read = ReadMeasurement(path);
+  ASSERT_NE(read.tabulated, nullptr);
+  ReadOptions for_fit;
+  for_fit.evaluator = false;
+  const Measurement fit_read = ReadMeasurement(path, for_fit);
+  EXPECT_EQ(fit_read.tabulated, nullptr);
+  ASSERT_NE(fit_read.cell_measure, nullptr);
+  ASSERT_EQ(fit_read.samples.size(), read.samples.size());
+  for (size_t k = 0; k < read.samples.size(); k += 997) {
+    ASSERT_TRUE((fit_read.samples[k].value == read.samples[k].value).all()) << k;
+  }
+  {
+    std::ofstream rewrite(path, std::ios::binary | std::ios::trunc);
+    rewrite << "not a table any more";
+  }
+  for (int h = 0; h < MerlTable::kThetaHalfBins; h += 7) {
+    Vec3 wi, wo;
+    FromHalfDiff(MerlTable::CellCentre(h, 40, 20), &wi, &wo);
+    const int64_t cell = MerlTable::CellIndex(h, 40, 20);
+    EXPECT_EQ(read.tabulated->Eval(wi, wo)[0], written.raw(0, cell) * MerlTable::kScale[0]) << h;
+  }
+}
+
 TEST(Merl, HostileFilesNameTheByte) {
   ScratchDir dir;
   MerlTable table;

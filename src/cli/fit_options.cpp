@@ -13,8 +13,10 @@ std::string ModelNames() {
 }
 
 Measurement ReadForFit(const std::string& path, const FitArguments& arguments) {
-  Measurement measurement = ReadMeasurement(path, arguments.ToReadOptions());
-  measurement.tabulated.reset();
+  ReadOptions options = arguments.ToReadOptions();
+  options.evaluator = false;
+  Measurement measurement = ReadMeasurement(path, options);
+  measurement.tabulated.reset();  // the readers that build one regardless
   ReturnFreePages();
   return measurement;
 }

@@ -15,6 +15,11 @@ namespace brdf {
 struct ReadOptions {
   // Illuminant under which spectral files (ASTM, pbrt-v2) become RGB; recorded in metadata.
   Illuminant illuminant = Illuminant::kD65;
+  // Whether the caller keeps Measurement::tabulated. A fit drops it at once (it needs the cell
+  // measure, not the values between samples), so a reader may then skip building it: the MERL
+  // reader leaves its table in the file's mapped pages instead of copying it for an evaluator
+  // that may outlive the file's contents.
+  bool evaluator = true;
 };
 
 // What a writer wants the user to know (e.g. samples binned onto a grid).

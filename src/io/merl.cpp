@@ -93,8 +93,11 @@ const Rgb MerlTable::kScale(1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0);
 
 MerlTable::MerlTable() : owned_(3 * kCells, -1.0) {}
 
-void MerlTable::Own() {
-  std::vector<double> values(3 * kCells);
+void MerlTable::Detach() {
+  if (file_ == nullptr) return;
+  std::vector<double> values;
+  ReservePrefaulted(&values, 3 * kCells);
+  values.resize(3 * kCells);
   std::memcpy(values.data(), file_->data() + kHeaderBytes, values.size() * sizeof(double));
   owned_ = std::move(values);
   file_ = nullptr;
@@ -336,11 +339,16 @@ bool SniffMerl(std::string_view head, int64_t file_size) {
   return dims[0] == kDimensions[0] && dims[1] == kDimensions[1] && dims[2] == kDimensions[2];
 }
 
-Measurement ReadMerl(const std::string& path, const ReadOptions&) {
-  auto table = std::make_shared<const MerlTable>(MerlTable::Read(path));
-  Measurement measurement = table->ToMeasurement();
-  measurement.tabulated = MerlTabulated(std::move(table));
+Measurement ReadMerl(const std::string& path, const ReadOptions& options) {
+  MerlTable table = MerlTable::Read(path);
+  Measurement measurement = table.ToMeasurement();
   measurement.cell_measure = MerlCellMeasure();
+  if (options.evaluator) {
+    // The evaluator may live long after this read (a Python session): with values of its own,
+    // a file rewritten in place meanwhile cannot pull its pages away.
+    table.Detach();
+    measurement.tabulated = MerlTabulated(std::make_shared<const MerlTable>(std::move(table)));
+  }
   return measurement;
 }
 

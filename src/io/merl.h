@@ -76,9 +76,13 @@ class MerlTable {
   // A table read from a mapped file copies its values into memory of its own first (so the
   // first write to a mapped table must not race with other reads or writes of it).
   double& raw(int channel, int64_t cell) {
-    if (file_ != nullptr) Own();
+    Detach();
     return owned_[channel * kCells + cell];
   }
+  // Copies the values of a table read from a mapped file into memory of its own (nothing for a
+  // table that has its own): for a table kept while its file may be rewritten in place, whose
+  // mapped pages would then vanish under it.
+  void Detach();
   // Whether the values are still the mapped file's pages (Read, where files can be mapped).
   bool InFilePages() const { return file_ != nullptr; }
   // BRDF (sr^-1) in the cell containing (wi, wo); NaN where the cell is missing.
@@ -87,7 +91,6 @@ class MerlTable {
  private:
   struct Unfilled {};
   explicit MerlTable(Unfilled) {}
-  void Own();
   // The stored values, 3 * kCells channel-major as in the file: the mapped file itself (Read),
   // or else owned_.
   std::shared_ptr<const MappedFile> file_;
