@@ -76,7 +76,7 @@ class MerlTable {
   // A table read from a mapped file copies its values into memory of its own first (so the
   // first write to a mapped table must not race with other reads or writes of it).
   double& raw(int channel, int64_t cell) {
-    Detach();
+    if (file_ != nullptr) Detach();
     return owned_[channel * kCells + cell];
   }
   // Copies the values of a table read from a mapped file into memory of its own (nothing for a
