@@ -363,8 +363,7 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
   const size_t usable = first_usable[chunks];
   // |z| of each channel of each usable sample, in file order; kNoScore where a channel has none.
   std::vector<double> scores;
-  ReservePrefaulted(&scores, 3 * usable);  // fresh pages, filled on one thread just below
-  scores.assign(3 * usable, kNoScore);
+  AssignPrefaulted(&scores, 3 * usable, kNoScore);  // fresh pages, faulted in from every core
   ForEachUsable(samples, first_usable, kSamplesPerChunk, [&](size_t k, size_t u) {
     const Sample& sample = samples[k];
     const Rgb f = model.Eval(sample.wi, sample.wo);

@@ -96,8 +96,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   const size_t count = first_usable[chunks];
   prepared.skipped_missing = std::accumulate(missing.begin(), missing.end(), size_t{0});
   prepared.skipped_invalid = source.size() - count - prepared.skipped_missing;
-  ReservePrefaulted(&prepared.samples, count);
-  prepared.samples.resize(count);
+  AssignPrefaulted(&prepared.samples, count);
   const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
   std::vector<size_t> source_index(per_sample_columns ? count : 0);
   ForEachUsable(source, first_usable, kPrepareChunk, [&](size_t k, size_t u) {

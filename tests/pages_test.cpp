@@ -87,6 +87,14 @@ TEST(Prefault, ReservePrefaultedKeepsTheElementsAndReservesAtLeastTheCount) {
   for (size_t k = 0; k < values.size(); ++k) ASSERT_EQ(values[k], k * k);
 }
 
+TEST(Prefault, AssignPrefaultedSizesTheBufferWithTheValue) {
+  std::vector<double> values = {1.0, 2.0};
+  AssignPrefaulted(&values, size_t{1} << 21, -0.5);
+  ASSERT_EQ(values.size(), size_t{1} << 21);
+  for (size_t k = 0; k < values.size(); k += 4099) ASSERT_EQ(values[k], -0.5) << k;
+  EXPECT_EQ(values.back(), -0.5);
+}
+
 TEST(FreePages, HandsAFreedHeapBlockBack) {
 #if defined(__linux__) && defined(__GLIBC__) && !defined(BRDFKIT_OWN_ALLOCATOR)
   // As `brdf` sets them (src/cli/main.cpp): large blocks come from the heap and stay there when

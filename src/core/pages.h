@@ -44,6 +44,14 @@ void ReservePrefaulted(std::vector<T>* buffer, size_t count) {
   PrefaultPages(unused, (buffer->capacity() - buffer->size()) * sizeof(T));
 }
 
+// A buffer sized to `count` copies of `value` on pages faulted in from every core first
+// (ReservePrefaulted): the fill, on one thread, meets no fresh page.
+template <typename T>
+void AssignPrefaulted(std::vector<T>* buffer, size_t count, const T& value = T()) {
+  ReservePrefaulted(buffer, count);
+  buffer->assign(count, value);
+}
+
 // reserve(count) with the reserved storage advised for huge pages (before any element is
 // constructed, so before any page is touched).
 template <typename T>

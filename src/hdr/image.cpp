@@ -13,8 +13,7 @@ namespace brdf {
 Image::Image(int width, int height, float alpha) : width(width), height(height) {
   // A 1080p frame is 33 MB: its fresh pages are faulted in from every core first (core/pages.h),
   // or the zero fill below would fault them one after another.
-  ReservePrefaulted(&rgba, static_cast<size_t>(pixel_count()) * kChannels);
-  rgba.assign(static_cast<size_t>(pixel_count()) * kChannels, 0.0f);
+  AssignPrefaulted(&rgba, static_cast<size_t>(pixel_count()) * kChannels, 0.0f);
   // The vector is zero already: a (positive) zero alpha needs no second pass.
   if (alpha != 0.0f || std::signbit(alpha)) {
     for (int64_t i = 0; i < pixel_count(); ++i) rgba[i * kChannels + 3] = alpha;

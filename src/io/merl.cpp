@@ -96,8 +96,7 @@ MerlTable::MerlTable() : owned_(3 * kCells, -1.0) {}
 void MerlTable::Detach() {
   if (file_ == nullptr) return;
   std::vector<double> values;
-  ReservePrefaulted(&values, 3 * kCells);
-  values.resize(3 * kCells);
+  AssignPrefaulted(&values, 3 * kCells);
   std::memcpy(values.data(), file_->data() + kHeaderBytes, values.size() * sizeof(double));
   owned_ = std::move(values);
   file_ = nullptr;
@@ -251,9 +250,8 @@ Measurement MerlTable::ToMeasurement() const {
       tabulate(kPhiDiffBins, [](int k) { return CellCentre(0, 0, k).phi_d; });
 
   Measurement measurement;
-  // Faulted in from both cores first: the resize would touch 117 MB of fresh pages on one.
-  ReservePrefaulted(&measurement.samples, kCells);
-  measurement.samples.resize(kCells);
+  // Faulted in from both cores first: sizing it would touch 117 MB of fresh pages on one.
+  AssignPrefaulted(&measurement.samples, kCells);
   tbb::parallel_for(0, kThetaHalfBins, [&](int theta_h_index) {
     const SinCos h = theta_h[theta_h_index];
     const Vec3 half_vector(h.sin, 0.0, h.cos);

@@ -25,8 +25,7 @@ Environment::Environment(Image image)
   // The tables below are fresh memory (21 MB for a 1k map), filled on one thread: their pages
   // are faulted in from every core first (core/pages.h).
   std::vector<double> weight;
-  ReservePrefaulted(&weight, static_cast<size_t>(count));
-  weight.resize(count);
+  AssignPrefaulted(&weight, static_cast<size_t>(count));
   double total = 0.0;
   for (int r = 0; r < height; ++r) {
     const double sin_theta = std::sin(kPi * (r + 0.5) / height);
@@ -60,8 +59,7 @@ Environment::Environment(Image image)
   // Vose's construction: scaled probabilities count * p_i split into those below 1 ("small")
   // and the rest; each small entry is topped up from a large one, which becomes its alias.
   std::vector<double> scaled;
-  ReservePrefaulted(&scaled, static_cast<size_t>(count));
-  scaled.resize(count);
+  AssignPrefaulted(&scaled, static_cast<size_t>(count));
   std::vector<uint32_t> small, large;
   for (int64_t i = 0; i < count; ++i) {
     scaled[i] = weight[i] / total * count;
