@@ -238,9 +238,10 @@ void SweepMismatch() {
     // half-vector angle: mean (bias) and rms per 10 deg bin.
     std::cout << "model,fit,rmse,log_rmse,bic,reduced_chi_square,converged,warnings,"
                  "theta_h_bin_deg,rms_z,mean_z,samples\n";
+    const fitters::PreparedSamples prepared_data = fitters::PrepareSamples(data);
     for (size_t k = 0; k < fits.size(); ++k) {
       const FitResult& fit = fits[k];
-      const fitters::ResidualCheck check = fitters::CheckResiduals(fit.model, data);
+      const fitters::ResidualCheck check = fitters::CheckResiduals(fit.model, prepared_data);
       const int bins = 9;  // 10 deg each over theta_h 0 ... 90
       std::vector<double> sum_square(bins, 0), sum(bins, 0);
       std::vector<int> count(bins, 0);

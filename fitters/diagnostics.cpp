@@ -71,7 +71,7 @@ constexpr double kMaxReducedChiSquare = 4.0;
 // Marks a channel without a residual score (scores are absolute values: never negative).
 constexpr double kNoScore = -1.0;
 
-// File samples per chunk of the residual check's parallel passes.
+// Samples per chunk of the residual check's parallel passes.
 constexpr size_t kSamplesPerChunk = size_t{1} << 14;
 // Scores per chunk of the radix histograms.
 constexpr size_t kHistogramGrain = size_t{1} << 18;
@@ -151,11 +151,11 @@ std::string ShapeText(const Model& model) {
   return what + shape.name + " = " + Format("%.4g", model.params()[shape.slot]);
 }
 
-void CheckLobeResolution(const Measurement& measurement, FitResult* result) {
+void CheckLobeResolution(const std::vector<FitSample>& samples, FitResult* result) {
   const Model& model = result->model;
   const double exponent = model.info().equivalent_exponent(model.params().data());
   const LobeFrame frame = model.Lobe().frame;
-  const LobeResolution lobe = ResolveLobe(frame, exponent, measurement);
+  const LobeResolution lobe = ResolveLobe(frame, exponent, samples);
   if (lobe.flank_samples > 0) return;
   std::string nearest = std::isfinite(lobe.nearest_off_peak_deg)
                             ? Format("%.3g", lobe.nearest_off_peak_deg) + " deg"
@@ -219,12 +219,11 @@ void CheckIdentifiability(FitResult* result) {
   }
 }
 
-void CheckCoverage(const Measurement& measurement, FitResult* result) {
-  double max_cos = 0;  // of the smaller cosine of each present sample: its larger polar angle
+void CheckCoverage(const std::vector<FitSample>& samples, FitResult* result) {
+  double max_cos = 0;  // of the smaller cosine of each sample: its larger polar angle
   double min_cos = 1;
   bool any = false;
-  for (const Sample& sample : measurement.samples) {
-    if (sample.missing || !(sample.wi.z() > 0) || !(sample.wo.z() > 0)) continue;
+  for (const FitSample& sample : samples) {
     min_cos = std::min({min_cos, sample.wi.z(), sample.wo.z()});
     max_cos = std::max(max_cos, std::min(sample.wi.z(), sample.wo.z()));
     any = true;
@@ -240,8 +239,8 @@ void CheckCoverage(const Measurement& measurement, FitResult* result) {
       "rise, shadowing) is extrapolated there, not fitted");
 }
 
-void CheckResidualWarnings(const Measurement& measurement, FitResult* result) {
-  const ResidualCheck check = CheckResiduals(result->model, measurement);
+void CheckResidualWarnings(const PreparedSamples& prepared, FitResult* result) {
+  const ResidualCheck check = CheckResiduals(result->model, prepared);
   if (check.residuals == 0) return;
   const double fraction = static_cast<double>(check.beyond_5_scale) / check.residuals;
   const bool clustered = check.clustering_z > kClusteringScore;
@@ -274,12 +273,8 @@ void CheckResidualWarnings(const Measurement& measurement, FitResult* result) {
 
 }  // namespace
 
-namespace {
-
-// ResolveLobe over the samples that `counts` accepts (FitSample and Sample both carry wi, wo).
-template <typename SampleType, typename Counts>
-LobeResolution ResolveLobeOver(LobeFrame frame, double exponent,
-                               const std::vector<SampleType>& samples, Counts counts) {
+LobeResolution ResolveLobe(LobeFrame frame, double exponent,
+                           const std::vector<FitSample>& samples) {
   LobeResolution lobe;
   lobe.half_width_deg = std::acos(std::exp(-0.5 / exponent)) * kRadToDeg;
   lobe.nearest_off_peak_deg = std::numeric_limits<double>::infinity();
@@ -295,7 +290,6 @@ LobeResolution ResolveLobeOver(LobeFrame frame, double exponent,
       tbb::blocked_range<size_t>(0, samples.size()), Scan{},
       [&](const tbb::blocked_range<size_t>& range, Scan partial) {
         for (size_t k = range.begin(); k < range.end(); ++k) {
-          if (!counts(samples[k])) continue;
           const double x = LobeExponentTerm(frame, exponent, samples[k].wi, samples[k].wo);
           if (x < kFlankStart) {
             ++partial.peak;
@@ -321,58 +315,33 @@ LobeResolution ResolveLobeOver(LobeFrame frame, double exponent,
   return lobe;
 }
 
-}  // namespace
-
-LobeResolution ResolveLobe(LobeFrame frame, double exponent,
-                           const std::vector<FitSample>& samples) {
-  return ResolveLobeOver(frame, exponent, samples, [](const FitSample&) { return true; });
-}
-
-LobeResolution ResolveLobe(LobeFrame frame, double exponent, const Measurement& measurement) {
-  return ResolveLobeOver(frame, exponent, measurement.samples, UsableForFit);
-}
-
-ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement) {
+ResidualCheck CheckResiduals(const Model& model, const PreparedSamples& prepared) {
   ResidualCheck check;
-  check.has_sigma = measurement.has_sigma();
-  const std::vector<Sample>& samples = measurement.samples;
-  const auto is_present = [](const Sample& sample) {
-    return !sample.missing && sample.value.allFinite();
-  };
-  // Chunks of the file's samples, in parallel: the largest value (for the rounding floor) and
-  // each chunk's count of usable samples, whose running sum places its scores in file order.
-  const size_t chunks = (samples.size() + kSamplesPerChunk - 1) / kSamplesPerChunk;
-  std::vector<size_t> first_usable(chunks + 1, 0);
+  check.has_sigma = !prepared.sigma.empty();
+  const std::vector<FitSample>& samples = prepared.samples;
+  const size_t usable = samples.size();
+  // The largest value, for the rounding floor.
   const double largest = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, chunks), 0.0,
+      tbb::blocked_range<size_t>(0, usable, kSamplesPerChunk), 0.0,
       [&](const tbb::blocked_range<size_t>& range, double partial) {
-        for (size_t chunk = range.begin(); chunk < range.end(); ++chunk) {
-          const size_t end = std::min(samples.size(), (chunk + 1) * kSamplesPerChunk);
-          size_t usable = 0;
-          for (size_t k = chunk * kSamplesPerChunk; k < end; ++k) {
-            if (!is_present(samples[k])) continue;
-            partial = std::max(partial, samples[k].value.abs().maxCoeff());
-            usable += UsableForFit(samples[k]);
-          }
-          first_usable[chunk + 1] = usable;
+        for (size_t u = range.begin(); u < range.end(); ++u) {
+          partial = std::max(partial, samples[u].value.abs().maxCoeff());
         }
         return partial;
       },
       [](double a, double b) { return std::max(a, b); });
-  std::partial_sum(first_usable.begin(), first_usable.end(), first_usable.begin());
-  const size_t usable = first_usable[chunks];
-  // |z| of each channel of each usable sample, in file order; kNoScore where a channel has none.
+  // |z| of each channel of each sample, in file order; kNoScore where a channel has none.
   std::vector<double> scores;
   AssignPrefaulted(&scores, 3 * usable, kNoScore);  // fresh pages, faulted in from every core
-  ForEachUsable(samples, first_usable, kSamplesPerChunk, [&](size_t k, size_t u) {
-    const Sample& sample = samples[k];
+  const auto score_sample = [&](size_t u) {
+    const FitSample& sample = samples[u];
     const Rgb f = model.Eval(sample.wi, sample.wo);
     for (int c = 0; c < 3; ++c) {
       double difference = sample.value[c] - f[c];
       if (std::abs(difference) <= kRoundingFloor * largest) difference = 0;
       double score;
       if (check.has_sigma) {
-        const double sigma = measurement.sigma[k][c];
+        const double sigma = prepared.sigma[u][c];
         if (!(sigma > 0) || !std::isfinite(sigma)) continue;
         score = difference / sigma;
       } else {
@@ -383,7 +352,11 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
       }
       scores[3 * u + c] = std::abs(score);
     }
-  });
+  };
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, usable, kSamplesPerChunk),
+                    [&](const tbb::blocked_range<size_t>& range) {
+                      for (size_t u = range.begin(); u < range.end(); ++u) score_sample(u);
+                    });
   std::vector<size_t> top = ScoreHistogram(scores, 48, 0, 0);
   check.residuals = std::accumulate(top.begin(), top.end(), size_t{0});
   if (check.residuals == 0) return check;
@@ -422,7 +395,7 @@ ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement)
   return check;
 }
 
-void AppendFitDiagnostics(const Measurement& measurement, FitResult* result) {
+void AppendFitDiagnostics(const PreparedSamples& prepared, FitResult* result) {
   if (!result->converged) {
     result->warnings.push_back(
         "not converged: the final solve stopped without meeting its "
@@ -431,10 +404,10 @@ void AppendFitDiagnostics(const Measurement& measurement, FitResult* result) {
   }
   CheckIdentifiability(result);
   if (result->model.info().has_lobe() && !LobeVanished(*result)) {
-    CheckLobeResolution(measurement, result);
+    CheckLobeResolution(prepared.samples, result);
   }
-  CheckCoverage(measurement, result);
-  CheckResidualWarnings(measurement, result);
+  CheckCoverage(prepared.samples, result);
+  CheckResidualWarnings(prepared, result);
 }
 
 }  // namespace brdf::fitters

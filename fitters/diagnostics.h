@@ -37,11 +37,9 @@ struct LobeResolution {
   double nearest_off_peak_deg = 0;
 };
 LobeResolution ResolveLobe(LobeFrame frame, double exponent, const std::vector<FitSample>& samples);
-// The same over a measurement's samples that a fit uses (UsableForFit): what the fit's
-// prepared samples give, without keeping them.
-LobeResolution ResolveLobe(LobeFrame frame, double exponent, const Measurement& measurement);
 
-// Statistics of the fitted model's residuals against the measurement's own values.
+// Statistics of the fitted model's residuals against the values it was fitted to (the fit's
+// prepared samples, with the file's sigma where it has one).
 struct ResidualCheck {
   size_t residuals = 0;               // channel values compared
   bool has_sigma = false;             // z-scores use the file's sigma; else relative residuals
@@ -54,10 +52,10 @@ struct ResidualCheck {
   // come in runs (a misfit region) rather than scattered (outliers).
   double clustering_z = 0;
 };
-ResidualCheck CheckResiduals(const Model& model, const Measurement& measurement);
+ResidualCheck CheckResiduals(const Model& model, const PreparedSamples& prepared);
 
-// Appends every applicable warning to result->warnings, from the fitted model and the
-// measurement it was fitted to: the fit's prepared samples need not be kept for them.
-void AppendFitDiagnostics(const Measurement& measurement, FitResult* result);
+// Appends every applicable warning to result->warnings, from the fitted model and the samples
+// it was fitted to.
+void AppendFitDiagnostics(const PreparedSamples& prepared, FitResult* result);
 
 }  // namespace brdf::fitters

@@ -262,10 +262,10 @@ FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string&
   return result;
 }
 
-void FinishFit(const Measurement& measurement, FitResult* result) {
+void FinishFit(const PreparedSamples& prepared, FitResult* result) {
   const auto start = std::chrono::steady_clock::now();
   CheckFitEnergy(result);
-  AppendFitDiagnostics(measurement, result);  // docs/stability.md
+  AppendFitDiagnostics(prepared, result);  // docs/stability.md
   result->time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -276,8 +276,8 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
   const auto start = std::chrono::steady_clock::now();
   PreparedSamples prepared = PrepareSamples(measurement);
   FitResult result = FitPreparedSamples(prepared, model_name, options);
+  FinishFit(prepared, &result);
   Release(&prepared);
-  FinishFit(measurement, &result);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

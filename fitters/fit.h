@@ -105,8 +105,8 @@ struct SubsampleOptimum {
   int iterations = 0;
 };
 
-// The whole fit: PrepareSamples, FitPreparedSamples, FinishFit (the prepared samples are released
-// before it: the diagnostics read the measurement).
+// The whole fit: PrepareSamples, FitPreparedSamples, FinishFit on the same samples, which are
+// then released.
 FitResult FitModel(const Measurement& measurement, const std::string& model_name,
                    const FitOptions& options);
 // The fit alone, on PrepareSamples(measurement): parameters, standard errors,
@@ -115,7 +115,7 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
 // whose samples had the same Subsample); when given and not found, it receives this fit's.
 FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string& model_name,
                              const FitOptions& options, SubsampleOptimum* optimum = nullptr);
-// The energy check (energy_check.h) and the warnings (diagnostics.h) of a fit.
-void FinishFit(const Measurement& measurement, FitResult* result);
+// The energy check (energy_check.h) and the warnings (diagnostics.h) of a fit of `prepared`.
+void FinishFit(const PreparedSamples& prepared, FitResult* result);
 
 }  // namespace brdf::fitters

@@ -1,5 +1,6 @@
 #include "fitters/fit_samples.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -59,6 +60,36 @@ void NeighbourAreas(const std::vector<const Vec3*>& directions, std::vector<doub
   for (double& area : *areas) area = std::max(area, 0.1 * smallest);
 }
 
+// A measurement's samples chunk by chunk: views of Measurement::samples, or made by its
+// SampleSource into a buffer of the calling thread's.
+class SampleChunks {
+ public:
+  SampleChunks(const Measurement& measurement, size_t chunk_size)
+      : measurement_(measurement), chunk_size_(chunk_size) {}
+  size_t size() const { return measurement_.sample_count(); }
+  size_t chunks() const { return (size() + chunk_size_ - 1) / chunk_size_; }
+  // visit(samples, first, count): samples[0, count) are the measurement's [first, first + count).
+  template <typename Visitor>
+  void Visit(size_t chunk, const Visitor& visit) const {
+    const size_t first = chunk * chunk_size_;
+    const size_t count = std::min(size(), first + chunk_size_) - first;
+    if (measurement_.sample_source == nullptr) {
+      visit(measurement_.samples.data() + first, first, count);
+      return;
+    }
+    // Reused by every chunk the thread makes (1.3 MB, resident after its first chunk).
+    std::vector<Sample>& made = buffers_.local();
+    made.resize(count);
+    measurement_.sample_source->Make(first, first + count, made.data());
+    visit(made.data(), first, count);
+  }
+
+ private:
+  const Measurement& measurement_;
+  size_t chunk_size_;
+  mutable tbb::enumerable_thread_specific<std::vector<Sample>> buffers_;
+};
+
 }  // namespace
 
 constexpr EnumName<Loss> kLossNames[] = {
@@ -73,6 +104,7 @@ const char* LossName(Loss loss) { return NameOf(kLossNames, loss); }
 
 void Release(PreparedSamples* prepared) {
   prepared->samples = std::vector<FitSample>();
+  prepared->sigma = std::vector<Rgb>();
   ReturnFreePages();
 }
 
@@ -81,16 +113,18 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   // The usable samples, in file order, copied in parallel: each chunk of the measurement counts
   // its usable ones, the running sum of the counts places each chunk's copies, and the vector is
   // sized once (growing a vector of a million samples by doubling would hold the old and the new
-  // copy at once and fault pages for both).
-  const std::vector<Sample>& source = measurement.samples;
-  const size_t chunks = (source.size() + kPrepareChunk - 1) / kPrepareChunk;
+  // copy at once and fault pages for both). Samples a reader makes on demand are made twice,
+  // once for each pass: that costs less than holding them all.
+  const SampleChunks source(measurement, kPrepareChunk);
+  const size_t chunks = source.chunks();
   std::vector<size_t> first_usable(chunks + 1, 0), missing(chunks, 0);
   tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
-    const size_t end = std::min(source.size(), (chunk + 1) * kPrepareChunk);
-    for (size_t k = chunk * kPrepareChunk; k < end; ++k) {
-      first_usable[chunk + 1] += UsableForFit(source[k]);
-      missing[chunk] += source[k].missing;
-    }
+    source.Visit(chunk, [&](const Sample* samples, size_t /*first*/, size_t count) {
+      for (size_t k = 0; k < count; ++k) {
+        first_usable[chunk + 1] += UsableForFit(samples[k]);
+        missing[chunk] += samples[k].missing;
+      }
+    });
   });
   std::partial_sum(first_usable.begin(), first_usable.end(), first_usable.begin());
   const size_t count = first_usable[chunks];
@@ -99,12 +133,19 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   AssignPrefaulted(&prepared.samples, count);
   const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
   std::vector<size_t> source_index(per_sample_columns ? count : 0);
-  ForEachUsable(source, first_usable, kPrepareChunk, [&](size_t k, size_t u) {
-    FitSample& fit_sample = prepared.samples[u];
-    fit_sample.wi = source[k].wi;
-    fit_sample.wo = source[k].wo;
-    fit_sample.value = source[k].value;
-    if (per_sample_columns) source_index[u] = k;
+  tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
+    source.Visit(chunk, [&](const Sample* samples, size_t first, size_t count_in_chunk) {
+      size_t u = first_usable[chunk];
+      for (size_t k = 0; k < count_in_chunk; ++k) {
+        if (!UsableForFit(samples[k])) continue;
+        FitSample& fit_sample = prepared.samples[u];
+        fit_sample.wi = samples[k].wi;
+        fit_sample.wo = samples[k].wo;
+        fit_sample.value = samples[k].value;
+        if (per_sample_columns) source_index[u] = first + k;
+        ++u;
+      }
+    });
   });
   std::vector<FitSample>& samples = prepared.samples;
   if (samples.empty()) {
@@ -161,8 +202,12 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   // residuals themselves (fit.cpp).
   Rgb mean_sigma = Rgb::Ones();
   if (measurement.has_sigma()) {
+    prepared.sigma.resize(samples.size());
     Rgb sum = Rgb::Zero();
-    for (size_t k : source_index) sum += measurement.sigma[k].square();
+    for (size_t u = 0; u < samples.size(); ++u) {
+      prepared.sigma[u] = measurement.sigma[source_index[u]];
+      sum += prepared.sigma[u].square();
+    }
     mean_sigma = (sum / static_cast<double>(source_index.size())).sqrt();
   }
   tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
@@ -170,7 +215,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
     sample.weight *= normalization;
     sample.scale = Rgb::Constant(std::sqrt(sample.weight));
     if (measurement.has_sigma()) {
-      const Rgb& sigma = measurement.sigma[source_index[k]];
+      const Rgb& sigma = prepared.sigma[k];
       for (int c = 0; c < 3; ++c) {
         if (sigma[c] > 0 && mean_sigma[c] > 0) sample.scale[c] *= mean_sigma[c] / sigma[c];
       }

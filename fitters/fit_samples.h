@@ -2,8 +2,6 @@
 // weighs, and the transformed targets of each loss (DESIGN §6).
 #pragma once
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -53,33 +51,19 @@ inline bool UsableForFit(const Sample& sample) {
   return !sample.missing && sample.value.allFinite() && sample.wi.z() > 0 && sample.wo.z() > 0;
 }
 
-// Calls visit(k, u) for every usable sample k of `samples` (UsableForFit), u its place among the
-// usable ones in file order, in parallel over chunks of `chunk_size` samples: first_usable[c] is
-// the count of usable samples before chunk c (the running sum of the chunks' counts). The loops
-// that keep one entry per usable sample (PrepareSamples, the residual check) fill them so.
-template <typename Visit>
-void ForEachUsable(const std::vector<Sample>& samples, const std::vector<size_t>& first_usable,
-                   size_t chunk_size, const Visit& visit) {
-  tbb::parallel_for(size_t{0}, first_usable.size() - 1, [&](size_t chunk) {
-    const size_t end = std::min(samples.size(), (chunk + 1) * chunk_size);
-    size_t u = first_usable[chunk];
-    for (size_t k = chunk * chunk_size; k < end; ++k) {
-      if (UsableForFit(samples[k])) visit(k, u++);
-    }
-  });
-}
-
 struct PreparedSamples {
   std::vector<FitSample> samples;
+  // The file's sigma of each of `samples`, when it has a sigma column (else empty): the residual
+  // check's z-scores (diagnostics.h).
+  std::vector<Rgb> sigma;
   size_t skipped_missing = 0;  // flagged missing
   size_t skipped_invalid = 0;  // NaN/Inf values, or a direction at or below the horizon
   std::string weighting;       // how the solid-angle weights were found
   bool designed = false;       // a designed schedule's (equal weights; may crowd onto a lobe)
 };
 
-// Frees the samples (the counts and names stay) and hands their pages back to the system: what
-// follows a fit reads the measurement, and its buffers would otherwise be placed on fresh pages
-// beside these (a MERL table's samples are 114 MB).
+// Frees the samples (the counts and names stay) and hands their pages back to the system, once
+// the fit and its diagnostics are done with them (a MERL table's samples are 114 MB).
 void Release(PreparedSamples* prepared);
 
 // Selects the usable samples and weights each by the solid angle it represents. Weights:

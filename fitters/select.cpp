@@ -83,12 +83,12 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
     subsample.samples = std::vector<FitSample>();
     fits[best] = FitPreparedSamples(prepared, fits[best].model.name(), options, &optima[best]);
   }
-  Release(&prepared);
   // The energy check and the diagnostics cost more than many fits of a small file: only the
   // chosen fit gets them, unless the caller keeps every fit.
   for (size_t k = 0; k < fits.size(); ++k) {
-    if (k == best || all_fits != nullptr) FinishFit(measurement, &fits[k]);
+    if (k == best || all_fits != nullptr) FinishFit(prepared, &fits[k]);
   }
+  Release(&prepared);
   const FitResult& chosen = fits[best];
   selection->chosen = chosen.model.name();
   const CandidateScore& winner = selection->candidates[best];  // its score in the contest

@@ -66,14 +66,15 @@ TEST(FitDiagnostics, LobeNarrowerThanTheSampleSpacingIsReported) {
   EXPECT_NEAR(lobe.half_width_deg, 180 / kPi / std::sqrt(1e4), 1e-3);
 }
 
-TEST(FitDiagnostics, LobeResolutionOverTheMeasurementIsThatOfTheFitsSamples) {
-  // The diagnostics read the measurement, not the fit's prepared samples (freed before them):
-  // the samples a fit skips (missing, NaN, at or below the horizon) must not count.
+TEST(FitDiagnostics, SamplesTheFitSkipsDoNotCount) {
+  // The diagnostics read the fit's prepared samples: a sample the fit skips (missing, NaN, at or
+  // below the horizon) is not among them, even one placed on the lobe's peak.
   const Model truth = ParseModel("phong:rho_d=0.3:rho_s=0.5:n=300");
   SyntheticOptions options;
   options.theta_step_deg = 5;
   options.phi_step_deg = 15;
   Measurement measurement = SynthesizeOnHemisphere(truth, options);
+  const fitters::PreparedSamples clean = fitters::PrepareSamples(measurement);
   Sample on_peak;  // exactly on the mirror direction: would count as a peak sample
   on_peak.wi = SphericalDirection(DegToRad(30), 0);
   on_peak.wo = SphericalDirection(DegToRad(30), kPi);
@@ -86,13 +87,18 @@ TEST(FitDiagnostics, LobeResolutionOverTheMeasurementIsThatOfTheFitsSamples) {
   const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement);
   ASSERT_EQ(prepared.samples.size() + 3, measurement.samples.size());
   for (LobeFrame frame : {LobeFrame::kMirror, LobeFrame::kHalfVector}) {
-    const fitters::LobeResolution from_samples = fitters::ResolveLobe(frame, 300, prepared.samples);
-    const fitters::LobeResolution from_measurement = fitters::ResolveLobe(frame, 300, measurement);
-    EXPECT_GT(from_samples.peak_samples, 0u);
-    EXPECT_EQ(from_measurement.peak_samples, from_samples.peak_samples);
-    EXPECT_EQ(from_measurement.flank_samples, from_samples.flank_samples);
-    EXPECT_EQ(from_measurement.nearest_off_peak_deg, from_samples.nearest_off_peak_deg);
+    const fitters::LobeResolution with_skipped = fitters::ResolveLobe(frame, 300, prepared.samples);
+    const fitters::LobeResolution without = fitters::ResolveLobe(frame, 300, clean.samples);
+    EXPECT_GT(without.peak_samples, 0u);
+    EXPECT_EQ(with_skipped.peak_samples, without.peak_samples);
+    EXPECT_EQ(with_skipped.flank_samples, without.flank_samples);
+    EXPECT_EQ(with_skipped.nearest_off_peak_deg, without.nearest_off_peak_deg);
   }
+  const fitters::ResidualCheck residuals_with = fitters::CheckResiduals(truth, prepared);
+  const fitters::ResidualCheck residuals_without = fitters::CheckResiduals(truth, clean);
+  EXPECT_EQ(residuals_with.residuals, residuals_without.residuals);
+  EXPECT_EQ(residuals_with.robust_scale, residuals_without.robust_scale);
+  EXPECT_EQ(residuals_with.reduced_chi_square, residuals_without.reduced_chi_square);
 }
 
 TEST(FitDiagnostics, LobeResolutionCountsTheFlankExactly) {
@@ -184,7 +190,8 @@ TEST(FitDiagnostics, OutliersAreReportedWithoutRobustLoss) {
   }());
   EXPECT_FALSE(HasWarning(cauchy, "model mismatch")) << AllWarnings(cauchy);
   // 5 % spikes of x10 are 5 % of the samples beyond 5 scales: the count is what was planted.
-  const fitters::ResidualCheck check = fitters::CheckResiduals(truth, data);
+  const fitters::ResidualCheck check =
+      fitters::CheckResiduals(truth, fitters::PrepareSamples(data));
   EXPECT_NEAR(static_cast<double>(check.beyond_5_scale) / check.residuals, 0.05, 0.01);
   EXPECT_NEAR(check.robust_scale, 1.0, 0.1);  // the sigma column is honest for the inliers
 }
@@ -192,7 +199,7 @@ TEST(FitDiagnostics, OutliersAreReportedWithoutRobustLoss) {
 TEST(FitDiagnostics, HonestSigmaGivesUnitChiSquare) {
   const Model truth = ParseModel(kGlossyPhong);
   const fitters::ResidualCheck check =
-      fitters::CheckResiduals(truth, SynthesizeOnHemisphere(truth, {}));
+      fitters::CheckResiduals(truth, fitters::PrepareSamples(SynthesizeOnHemisphere(truth, {})));
   // 3 x 21,000 residuals: chi-square / dof = 1 +- 0.006.
   EXPECT_NEAR(check.reduced_chi_square, 1.0, 0.03);
   EXPECT_EQ(check.beyond_5_scale, 0u);

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "fitters/fit.h"
 #include "fitters/fit_samples.h"
 #include "io/formats.h"
 #include "models/model_string.h"
@@ -294,6 +295,80 @@ TEST(Merl, TheEvaluatorOutlivesItsFileAndAFitReadBuildsNone) {
     const int64_t cell = MerlTable::CellIndex(h, 40, 20);
     EXPECT_EQ(read.tabulated->Eval(wi, wo)[0], written.raw(0, cell) * MerlTable::kScale[0]) << h;
   }
+}
+
+// A read that leaves its samples to be made on demand (ReadOptions::samples = false, as `brdf fit`
+// reads) hands out a source whose samples are bit for bit the ones a full read holds, over any
+// range; a fit's prepared samples from either are the same, and so is the fit.
+TEST(Merl, SamplesMadeOnDemandAreTheSamplesOfAFullRead) {
+  ScratchDir dir;
+  const MerlTable written = RandomTable(13, -300.0, 3000.0);  // about a tenth missing
+  const std::string path = dir.File("on-demand.binary");
+  written.Write(path);
+  const Measurement full = ReadMeasurement(path);
+  ReadOptions lean;
+  lean.samples = false;
+  lean.evaluator = false;
+  const Measurement on_demand = ReadMeasurement(path, lean);
+  ASSERT_NE(on_demand.sample_source, nullptr);
+  EXPECT_TRUE(on_demand.samples.empty());
+  EXPECT_EQ(on_demand.sample_count(), full.samples.size());
+  EXPECT_EQ(on_demand.metadata, full.metadata);
+  ASSERT_NE(on_demand.cell_measure, nullptr);
+  const auto same = [](const Sample& a, const Sample& b) {
+    return (a.wi.array() == b.wi.array()).all() && (a.wo.array() == b.wo.array()).all() &&
+           (a.value == b.value).all() && a.missing == b.missing;
+  };
+  // The whole table at once, and ranges that start and end inside a theta_h row.
+  std::vector<Sample> made(full.samples.size());
+  on_demand.sample_source->Make(0, made.size(), made.data());
+  for (size_t k = 0; k < made.size(); ++k) ASSERT_TRUE(same(made[k], full.samples[k])) << k;
+  for (size_t begin : {size_t{1}, size_t{16199}, size_t{700001}}) {
+    std::vector<Sample> part(333);
+    on_demand.sample_source->Make(begin, begin + part.size(), part.data());
+    for (size_t k = 0; k < part.size(); ++k) {
+      ASSERT_TRUE(same(part[k], full.samples[begin + k])) << begin + k;
+    }
+  }
+
+  const fitters::PreparedSamples from_full = fitters::PrepareSamples(full);
+  const fitters::PreparedSamples from_source = fitters::PrepareSamples(on_demand);
+  EXPECT_EQ(from_source.skipped_missing, from_full.skipped_missing);
+  EXPECT_EQ(from_source.skipped_invalid, from_full.skipped_invalid);
+  EXPECT_GT(from_full.skipped_missing, size_t{MerlTable::kCells / 20});
+  EXPECT_EQ(from_source.weighting, from_full.weighting);
+  ASSERT_EQ(from_source.samples.size(), from_full.samples.size());
+  for (size_t k = 0; k < from_full.samples.size(); ++k) {
+    const fitters::FitSample& a = from_source.samples[k];
+    const fitters::FitSample& b = from_full.samples[k];
+    ASSERT_TRUE((a.wi.array() == b.wi.array()).all() && (a.wo.array() == b.wo.array()).all() &&
+                (a.value == b.value).all() && (a.scale == b.scale).all() && a.weight == b.weight)
+        << k;
+  }
+}
+
+// The fit of a table read with its samples made on demand is the fit of the full read: the same
+// parameters, metrics, standard errors and warnings, bit for bit.
+TEST(Merl, AFitOfSamplesMadeOnDemandIsTheFitOfAFullRead) {
+  ScratchDir dir;
+  const std::string path = dir.File("analytic.binary");
+  WriteMeasurement(TabulateOnGrid(ParseModel("blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.2:m=80")),
+                   path);
+  ReadOptions lean;
+  lean.samples = false;
+  lean.evaluator = false;
+  const fitters::FitResult full =
+      fitters::FitModel(ReadMeasurement(path), "blinn-phong", fitters::FitOptions{});
+  const fitters::FitResult on_demand =
+      fitters::FitModel(ReadMeasurement(path, lean), "blinn-phong", fitters::FitOptions{});
+  EXPECT_TRUE(full.converged);
+  EXPECT_EQ(on_demand.model.ToString(17), full.model.ToString(17));
+  EXPECT_EQ(on_demand.stderr_values, full.stderr_values);
+  EXPECT_EQ(on_demand.metrics.rmse, full.metrics.rmse);
+  EXPECT_EQ(on_demand.bic, full.bic);
+  EXPECT_EQ(on_demand.samples, full.samples);
+  EXPECT_EQ(on_demand.skipped, full.skipped);
+  EXPECT_EQ(on_demand.warnings, full.warnings);
 }
 
 TEST(Merl, HostileFilesNameTheByte) {

@@ -12,9 +12,10 @@ std::string ModelNames() {
   return names;
 }
 
-Measurement ReadForFit(const std::string& path, const FitArguments& arguments) {
+Measurement ReadForFit(const std::string& path, const FitArguments& arguments, bool samples) {
   ReadOptions options = arguments.ToReadOptions();
   options.evaluator = false;
+  options.samples = samples;
   Measurement measurement = ReadMeasurement(path, options);
   measurement.tabulated.reset();  // the readers that build one regardless
   ReturnFreePages();

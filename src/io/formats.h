@@ -20,6 +20,11 @@ struct ReadOptions {
   // reader leaves its table in the file's mapped pages instead of copying it for an evaluator
   // that may outlive the file's contents.
   bool evaluator = true;
+  // Whether the caller needs Measurement::samples. A fit copies the samples it uses into a
+  // buffer of its own (fitters/fit_samples.h), so a reader whose samples follow from a table (MERL)
+  // may then set Measurement::sample_source instead and make them only when asked: a MERL table's
+  // 1.46 million samples are 117 MB. Readers of other formats fill `samples` regardless.
+  bool samples = true;
 };
 
 // What a writer wants the user to know (e.g. samples binned onto a grid).

@@ -229,59 +229,100 @@ MerlTable MerlTable::Tabulate(const std::function<Rgb(const Vec3& wi, const Vec3
   return table;
 }
 
-Measurement MerlTable::ToMeasurement() const {
-  // Cell-centre directions from per-bin sines and cosines: the same rotation as FromHalfDiff
-  // (wi = Ry(theta_h) d with phi_h = 0; wo = 2 (wi.h) h - wi) without 1.4 million sets of trig
-  // calls, which made this conversion four times slower than reading the file.
+namespace {
+
+// Sines and cosines of the cell-centre angles of each bin: the cell-centre directions follow
+// from them by the same rotation as FromHalfDiff (wi = Ry(theta_h) d with phi_h = 0;
+// wo = 2 (wi.h) h - wi) without 1.4 million sets of trig calls, which made the conversion four
+// times slower than reading the file.
+struct CellAngles {
   struct SinCos {
     double sin, cos;
   };
-  auto tabulate = [](int bins, auto angle_of_bin) {
-    std::vector<SinCos> table(bins);
-    for (int k = 0; k < bins; ++k)
-      table[k] = {std::sin(angle_of_bin(k)), std::cos(angle_of_bin(k))};
-    return table;
-  };
-  const std::vector<SinCos> theta_h =
-      tabulate(kThetaHalfBins, [](int k) { return CellCentre(k, 0, 0).theta_h; });
-  const std::vector<SinCos> theta_d =
-      tabulate(kThetaDiffBins, [](int k) { return CellCentre(0, k, 0).theta_d; });
-  const std::vector<SinCos> phi_d =
-      tabulate(kPhiDiffBins, [](int k) { return CellCentre(0, 0, k).phi_d; });
+  std::vector<SinCos> theta_h, theta_d, phi_d;
 
+  static const CellAngles& Get() {
+    static const CellAngles angles = [] {
+      auto tabulate = [](int bins, auto angle_of_bin) {
+        std::vector<SinCos> table(bins);
+        for (int k = 0; k < bins; ++k)
+          table[k] = {std::sin(angle_of_bin(k)), std::cos(angle_of_bin(k))};
+        return table;
+      };
+      CellAngles made;
+      made.theta_h = tabulate(MerlTable::kThetaHalfBins,
+                              [](int k) { return MerlTable::CellCentre(k, 0, 0).theta_h; });
+      made.theta_d = tabulate(MerlTable::kThetaDiffBins,
+                              [](int k) { return MerlTable::CellCentre(0, k, 0).theta_d; });
+      made.phi_d = tabulate(MerlTable::kPhiDiffBins,
+                            [](int k) { return MerlTable::CellCentre(0, 0, k).phi_d; });
+      return made;
+    }();
+    return angles;
+  }
+};
+
+void AddGridMetadata(Measurement* measurement) {
+  measurement->metadata["units"] =
+      "BRDF in sr^-1 (stored values times 1/1500, 1.15/1500, 1.66/1500)";
+  measurement->metadata["grid"] =
+      "MERL 90x90x180 (theta_h sqrt-warped, theta_d, phi_d in [0, pi)); one sample per cell "
+      "centre, phi_h = 0";
+  measurement->metadata["missing"] =
+      "cells with a negative stored value, or whose centre lies below the horizon";
+}
+
+// The table's samples made on demand (ReadOptions::samples = false): the table, and with it the
+// file's mapping, lives as long as this does.
+class MerlSamples final : public SampleSource {
+ public:
+  explicit MerlSamples(std::shared_ptr<const MerlTable> table) : table_(std::move(table)) {}
+  size_t size() const override { return MerlTable::kCells; }
+  void Make(size_t begin, size_t end, Sample* out) const override {
+    table_->MakeSamples(static_cast<int64_t>(begin), static_cast<int64_t>(end), out);
+  }
+
+ private:
+  std::shared_ptr<const MerlTable> table_;
+};
+
+}  // namespace
+
+void MerlTable::MakeSamples(int64_t begin, int64_t end, Sample* out) const {
+  const CellAngles& angles = CellAngles::Get();
+  for (int64_t cell = begin; cell < end; ++cell) {
+    const int phi_diff_index = static_cast<int>(cell % kPhiDiffBins);
+    const int theta_diff_index = static_cast<int>(cell / kPhiDiffBins % kThetaDiffBins);
+    const int theta_h_index = static_cast<int>(cell / (int64_t{kPhiDiffBins} * kThetaDiffBins));
+    const CellAngles::SinCos h = angles.theta_h[theta_h_index];
+    const CellAngles::SinCos d = angles.theta_d[theta_diff_index];
+    const CellAngles::SinCos p = angles.phi_d[phi_diff_index];
+    const Vec3 half_vector(h.sin, 0.0, h.cos);
+    const Vec3 diff(d.sin * p.cos, d.sin * p.sin, d.cos);
+    Sample& sample = out[cell - begin];
+    sample.wi =
+        Vec3(h.cos * diff.x() + h.sin * diff.z(), diff.y(), -h.sin * diff.x() + h.cos * diff.z());
+    sample.wo = 2.0 * sample.wi.dot(half_vector) * half_vector - sample.wi;
+    bool missing = sample.wi.z() <= 0.0 || sample.wo.z() <= 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double stored = raw(c, cell);
+      missing = missing || stored < 0.0;
+      sample.value[c] = stored * kScale[c];
+    }
+    sample.missing = missing;
+  }
+}
+
+Measurement MerlTable::ToMeasurement() const {
   Measurement measurement;
   // Faulted in from both cores first: sizing it would touch 117 MB of fresh pages on one.
   AssignPrefaulted(&measurement.samples, kCells);
+  constexpr int64_t kRow = int64_t{kThetaDiffBins} * kPhiDiffBins;  // the cells of one theta_h
   tbb::parallel_for(0, kThetaHalfBins, [&](int theta_h_index) {
-    const SinCos h = theta_h[theta_h_index];
-    const Vec3 half_vector(h.sin, 0.0, h.cos);
-    for (int theta_diff_index = 0; theta_diff_index < kThetaDiffBins; ++theta_diff_index) {
-      const SinCos d = theta_d[theta_diff_index];
-      for (int phi_diff_index = 0; phi_diff_index < kPhiDiffBins; ++phi_diff_index) {
-        const SinCos p = phi_d[phi_diff_index];
-        const Vec3 diff(d.sin * p.cos, d.sin * p.sin, d.cos);
-        const int64_t cell = CellIndex(theta_h_index, theta_diff_index, phi_diff_index);
-        Sample& sample = measurement.samples[cell];
-        sample.wi = Vec3(h.cos * diff.x() + h.sin * diff.z(), diff.y(),
-                         -h.sin * diff.x() + h.cos * diff.z());
-        sample.wo = 2.0 * sample.wi.dot(half_vector) * half_vector - sample.wi;
-        bool missing = sample.wi.z() <= 0.0 || sample.wo.z() <= 0.0;
-        for (int c = 0; c < 3; ++c) {
-          const double stored = raw(c, cell);
-          missing = missing || stored < 0.0;
-          sample.value[c] = stored * kScale[c];
-        }
-        sample.missing = missing;
-      }
-    }
+    const int64_t first = theta_h_index * kRow;
+    MakeSamples(first, first + kRow, measurement.samples.data() + first);
   });
-  measurement.metadata["units"] =
-      "BRDF in sr^-1 (stored values times 1/1500, 1.15/1500, 1.66/1500)";
-  measurement.metadata["grid"] =
-      "MERL 90x90x180 (theta_h sqrt-warped, theta_d, phi_d in [0, pi)); one sample per cell "
-      "centre, phi_h = 0";
-  measurement.metadata["missing"] =
-      "cells with a negative stored value, or whose centre lies below the horizon";
+  AddGridMetadata(&measurement);
   return measurement;
 }
 
@@ -339,6 +380,18 @@ bool SniffMerl(std::string_view head, int64_t file_size) {
 
 Measurement ReadMerl(const std::string& path, const ReadOptions& options) {
   MerlTable table = MerlTable::Read(path);
+  if (!options.samples) {
+    // The caller keeps its own copy of the samples it needs: they are made when it asks, from the
+    // table (left in the file's mapped pages when no evaluator is wanted; Detach below otherwise).
+    Measurement measurement;
+    AddGridMetadata(&measurement);
+    measurement.cell_measure = MerlCellMeasure();
+    if (options.evaluator) table.Detach();
+    auto shared = std::make_shared<const MerlTable>(std::move(table));
+    measurement.sample_source = std::make_shared<const MerlSamples>(shared);
+    if (options.evaluator) measurement.tabulated = MerlTabulated(shared);
+    return measurement;
+  }
   Measurement measurement = table.ToMeasurement();
   measurement.cell_measure = MerlCellMeasure();
   if (options.evaluator) {

@@ -53,6 +53,9 @@ class MerlTable {
   // One sample per cell at the cell centre, phi_h = 0. Cells with a negative value, or whose
   // centre directions fall at or below the horizon, are flagged missing.
   Measurement ToMeasurement() const;
+  // Those samples of cells [begin, end) (cell indices, CellIndex order) written to out[0, end -
+  // begin): what a reader asked not to make its samples hands out instead (SampleSource).
+  void MakeSamples(int64_t begin, int64_t end, Sample* out) const;
 
   static int ThetaHalfIndex(double theta_h);
   static int ThetaDiffIndex(double theta_d);
