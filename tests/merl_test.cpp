@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <sstream>
 
@@ -401,6 +402,15 @@ TEST(Merl, HostileFilesNameTheByte) {
   const double nan = std::nan("");
   std::memcpy(with_nan.data() + 12 + 8 * 1000, &nan, 8);
   expect_error("nan.binary", with_nan, "byte " + std::to_string(12 + 8 * 1000));
+  // Two bad values, far apart (the check runs in parallel parts): the first is the one named.
+  const double infinite = std::numeric_limits<double>::infinity();
+  std::string two_bad = with_nan;
+  std::memcpy(two_bad.data() + 12 + 8 * (2 * MerlTable::kCells + 5), &infinite, 8);
+  expect_error("two.binary", two_bad, "byte " + std::to_string(12 + 8 * 1000));
+  std::string late_bad = bytes;
+  std::memcpy(late_bad.data() + 12 + 8 * (2 * MerlTable::kCells + 5), &infinite, 8);
+  expect_error("late.binary", late_bad,
+               "byte " + std::to_string(12 + 8 * (2 * MerlTable::kCells + 5)));
 }
 
 }  // namespace
