@@ -131,6 +131,12 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   prepared.skipped_missing = std::accumulate(missing.begin(), missing.end(), size_t{0});
   prepared.skipped_invalid = source.size() - count - prepared.skipped_missing;
   AssignPrefaulted(&prepared.samples, count);
+  // Solid-angle weights from a table's cells (or samples on the MERL grid written by another
+  // format) are taken in the same pass as the copies.
+  std::shared_ptr<const CellMeasure> cells = measurement.cell_measure;
+  if (cells == nullptr && !measurement.equal_weighting() && IsMerlGrid(measurement)) {
+    cells = MerlCellMeasure();
+  }
   const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
   std::vector<size_t> source_index(per_sample_columns ? count : 0);
   tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
@@ -142,6 +148,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
         fit_sample.wi = samples[k].wi;
         fit_sample.wo = samples[k].wo;
         fit_sample.value = samples[k].value;
+        if (cells != nullptr) fit_sample.weight = cells->Measure(fit_sample.wi, fit_sample.wo);
         if (per_sample_columns) source_index[u] = first + k;
         ++u;
       }
@@ -152,16 +159,8 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
     throw InputError(measurement.source, "no usable samples to fit (all missing or invalid)");
   }
 
-  // Solid-angle weights.
-  // A table's cells, or samples on the MERL grid written by another format.
-  std::shared_ptr<const CellMeasure> cells = measurement.cell_measure;
-  if (cells == nullptr && !measurement.equal_weighting() && IsMerlGrid(measurement)) {
-    cells = MerlCellMeasure();
-  }
+  // Solid-angle weights (those of a table's cells are in place already).
   if (cells != nullptr) {
-    tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
-      samples[k].weight = cells->Measure(samples[k].wi, samples[k].wo);
-    });
     prepared.weighting = cells->Name();
   } else if (measurement.equal_weighting()) {
     prepared.weighting = "equal (a designed schedule: each sample stands for itself)";
