@@ -71,7 +71,7 @@ constexpr double kMaxReducedChiSquare = 4.0;
 // Marks a channel without a residual score (scores are absolute values: never negative).
 constexpr double kNoScore = -1.0;
 
-// Samples per chunk of the residual check's parallel passes.
+// Samples per chunk of the diagnostics' parallel passes.
 constexpr size_t kSamplesPerChunk = size_t{1} << 14;
 // Scores per chunk of the radix histograms.
 constexpr size_t kHistogramGrain = size_t{1} << 18;
@@ -220,15 +220,18 @@ void CheckIdentifiability(FitResult* result) {
 }
 
 void CheckCoverage(const std::vector<FitSample>& samples, FitResult* result) {
-  double max_cos = 0;  // of the smaller cosine of each sample: its larger polar angle
-  double min_cos = 1;
-  bool any = false;
-  for (const FitSample& sample : samples) {
-    min_cos = std::min({min_cos, sample.wi.z(), sample.wo.z()});
-    max_cos = std::max(max_cos, std::min(sample.wi.z(), sample.wo.z()));
-    any = true;
-  }
-  if (!any) return;
+  if (samples.empty()) return;
+  // The smallest cosine of either direction: the largest polar angle the data reach (a minimum,
+  // the same in any order, so taken in parallel).
+  const double min_cos = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, samples.size(), kSamplesPerChunk), 1.0,
+      [&](const tbb::blocked_range<size_t>& range, double partial) {
+        for (size_t k = range.begin(); k < range.end(); ++k) {
+          partial = std::min({partial, samples[k].wi.z(), samples[k].wo.z()});
+        }
+        return partial;
+      },
+      [](double a, double b) { return std::min(a, b); });
   const double unseen = min_cos * min_cos;  // cos^2(theta_max): projected solid angle beyond
   if (unseen <= kMaxUnseenProjectedFraction) return;
   const double theta_max_deg = std::acos(std::clamp(min_cos, 0.0, 1.0)) * kRadToDeg;
