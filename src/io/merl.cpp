@@ -193,7 +193,8 @@ MerlTable MerlTable::Read(const std::string& path) {
   // Every value finite, checked in parallel parts that each lie within one channel; the error
   // names the first value that is not.
   const MerlTable& values = table;  // read without copying the mapped values (raw's const form)
-  constexpr int64_t kValues = 3 * kCells, kPart = 16200;  // a theta_h row
+  constexpr int64_t kValues = 3 * kCells;
+  constexpr int64_t kPart = int64_t{kThetaDiffBins} * kPhiDiffBins;  // one theta_h row
   static_assert(kCells % kPart == 0, "a part must not straddle two channels");
   const int64_t first_bad = tbb::parallel_reduce(
       tbb::blocked_range<int64_t>(0, kValues / kPart), kValues,
