@@ -2,7 +2,6 @@
 // weighs, and the transformed targets of each loss (DESIGN §6).
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>

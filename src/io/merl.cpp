@@ -190,19 +190,17 @@ MerlTable MerlTable::Read(const std::string& path) {
       throw ByteError(path, kHeaderBytes + stream.gcount(), "read failed (file changed?)");
     }
   }
-  // Every value finite, checked in parallel parts that each lie within one channel; the error
-  // names the first value that is not.
+  // Every value finite, checked in parallel by rows of one channel; the error names the first
+  // value that is not.
   const MerlTable& values = table;  // read without copying the mapped values (raw's const form)
   constexpr int64_t kValues = 3 * kCells;
-  constexpr int64_t kPart = int64_t{kThetaDiffBins} * kPhiDiffBins;  // one theta_h row
-  static_assert(kCells % kPart == 0, "a part must not straddle two channels");
   const int64_t first_bad = tbb::parallel_reduce(
-      tbb::blocked_range<int64_t>(0, kValues / kPart), kValues,
-      [&](const tbb::blocked_range<int64_t>& parts, int64_t first) {
-        for (int64_t part = parts.begin(); part < parts.end(); ++part) {
-          const int channel = static_cast<int>(part * kPart / kCells);
-          const int64_t begin = part * kPart - int64_t{channel} * kCells;
-          for (int64_t cell = begin; cell < begin + kPart; ++cell) {
+      tbb::blocked_range<int64_t>(0, kValues / kRowCells), kValues,
+      [&](const tbb::blocked_range<int64_t>& rows, int64_t first) {
+        for (int64_t row = rows.begin(); row < rows.end(); ++row) {
+          const int channel = static_cast<int>(row / kThetaHalfBins);
+          const int64_t begin = (row % kThetaHalfBins) * kRowCells;
+          for (int64_t cell = begin; cell < begin + kRowCells; ++cell) {
             if (std::isfinite(values.raw(channel, cell))) continue;
             first = std::min(first, int64_t{channel} * kCells + cell);
             break;
@@ -311,7 +309,7 @@ void MerlTable::MakeSamples(int64_t begin, int64_t end, Sample* out) const {
   for (int64_t cell = begin; cell < end; ++cell) {
     const int phi_diff_index = static_cast<int>(cell % kPhiDiffBins);
     const int theta_diff_index = static_cast<int>(cell / kPhiDiffBins % kThetaDiffBins);
-    const int theta_h_index = static_cast<int>(cell / (int64_t{kPhiDiffBins} * kThetaDiffBins));
+    const int theta_h_index = static_cast<int>(cell / kRowCells);
     const CellAngles::SinCos h = angles.theta_h[theta_h_index];
     const CellAngles::SinCos d = angles.theta_d[theta_diff_index];
     const CellAngles::SinCos p = angles.phi_d[phi_diff_index];
@@ -335,10 +333,9 @@ Measurement MerlTable::ToMeasurement() const {
   Measurement measurement;
   // Faulted in from both cores first: sizing it would touch 117 MB of fresh pages on one.
   AssignPrefaulted(&measurement.samples, kCells);
-  constexpr int64_t kRow = int64_t{kThetaDiffBins} * kPhiDiffBins;  // the cells of one theta_h
   tbb::parallel_for(0, kThetaHalfBins, [&](int theta_h_index) {
-    const int64_t first = theta_h_index * kRow;
-    MakeSamples(first, first + kRow, measurement.samples.data() + first);
+    const int64_t first = theta_h_index * kRowCells;
+    MakeSamples(first, first + kRowCells, measurement.samples.data() + first);
   });
   AddGridMetadata(&measurement);
   return measurement;
@@ -398,26 +395,20 @@ bool SniffMerl(std::string_view head, int64_t file_size) {
 
 Measurement ReadMerl(const std::string& path, const ReadOptions& options) {
   MerlTable table = MerlTable::Read(path);
-  if (!options.samples) {
-    // The caller keeps its own copy of the samples it needs: they are made when it asks, from the
-    // table (left in the file's mapped pages when no evaluator is wanted; Detach below otherwise).
-    Measurement measurement;
+  // The evaluator may live long after this read (a Python session): with values of its own, a
+  // file rewritten in place meanwhile cannot pull its pages away. Without one the table stays in
+  // the file's mapped pages.
+  if (options.evaluator) table.Detach();
+  auto shared = std::make_shared<const MerlTable>(std::move(table));
+  Measurement measurement;
+  if (options.samples) {
+    measurement = shared->ToMeasurement();
+  } else {  // the caller copies what it needs: the samples are made when it asks
     AddGridMetadata(&measurement);
-    measurement.cell_measure = MerlCellMeasure();
-    if (options.evaluator) table.Detach();
-    auto shared = std::make_shared<const MerlTable>(std::move(table));
     measurement.sample_source = std::make_shared<const MerlSamples>(shared);
-    if (options.evaluator) measurement.tabulated = MerlTabulated(shared);
-    return measurement;
   }
-  Measurement measurement = table.ToMeasurement();
   measurement.cell_measure = MerlCellMeasure();
-  if (options.evaluator) {
-    // The evaluator may live long after this read (a Python session): with values of its own,
-    // a file rewritten in place meanwhile cannot pull its pages away.
-    table.Detach();
-    measurement.tabulated = MerlTabulated(std::make_shared<const MerlTable>(std::move(table)));
-  }
+  if (options.evaluator) measurement.tabulated = MerlTabulated(std::move(shared));
   return measurement;
 }
 

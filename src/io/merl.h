@@ -26,7 +26,9 @@ class MerlTable {
   static constexpr int kThetaHalfBins = 90;
   static constexpr int kThetaDiffBins = 90;
   static constexpr int kPhiDiffBins = 180;
-  static constexpr int64_t kCells = int64_t{kThetaHalfBins} * kThetaDiffBins * kPhiDiffBins;
+  // The cells of one theta_h bin (one row of the table), and of the whole table.
+  static constexpr int64_t kRowCells = int64_t{kThetaDiffBins} * kPhiDiffBins;
+  static constexpr int64_t kCells = kThetaHalfBins * kRowCells;
   static constexpr int64_t kHeaderBytes = 12;
   static constexpr int64_t kFileBytes = kHeaderBytes + kCells * 3 * 8;  // 34,992,012
   // Raw value * scale = BRDF in sr^-1, per channel (MERL's BRDFRead.cpp constants).
