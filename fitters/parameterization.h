@@ -23,6 +23,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 
 #include "fitters/energy_bound.h"
 #include "models/common.h"
@@ -62,9 +64,72 @@ T Logistic(const T& x) {
 
 inline double Logit(double p) { return std::log(p / (1.0 - p)); }
 
+namespace parameterization_detail {
+
+// One call of a pure function of the fitter's variables, remembered per thread (LastCall::Find,
+// LastCall::Keep). A fit evaluates its residual batches, tens to thousands a pass, at one point
+// of the variables, and every batch asks for the same parameters: for a microfacet model a
+// search of the albedo table per channel, through Jets with their derivatives. The inputs are
+// compared bit for bit, so a hit returns exactly what the function returned.
+template <int kOutputs>
+class LastCall {
+ public:
+  // The variables as one key: d[3], then s[s_size] and shape[1] when given.
+  void SetKey(bool grey_specular, const double* d, const double* s, int s_size,
+              const double* shape) {
+    grey_ = grey_specular;
+    size_ = 0;
+    for (int c = 0; c < 3; ++c) key_[size_++] = d[c];
+    for (int c = 0; c < s_size; ++c) key_[size_++] = s[c];
+    if (shape != nullptr) key_[size_++] = shape[0];
+  }
+  // True, with the outputs copied to out[0, count), if the last kept call had this key.
+  bool Find(const LastCall& key, double* out, int count) const {
+    if (!valid_ || key.grey_ != grey_ || key.size_ != size_ ||
+        std::memcmp(key.key_, key_, sizeof(double) * size_) != 0) {
+      return false;
+    }
+    std::copy(out_, out_ + count, out);
+    return true;
+  }
+  void Keep(const LastCall& key, const double* out, int count) {
+    *this = key;
+    std::copy(out, out + count, out_);
+    valid_ = true;
+  }
+
+ private:
+  bool valid_ = false, grey_ = false;
+  int size_ = 0;
+  double key_[FitVariables::kMaxVariables];
+  double out_[kOutputs];
+};
+
+}  // namespace parameterization_detail
+
+template <typename M, typename T>
+void ComputeParams(bool grey_specular, const T* d, const T* s, const T* shape, T* params);
+
 // Fills model M's params from the fitter's variables (s and shape unused for lambert).
 template <typename M, typename T>
 void VariablesToParams(bool grey_specular, const T* d, const T* s, const T* shape, T* params) {
+  if constexpr (std::is_same_v<T, double>) {
+    thread_local parameterization_detail::LastCall<M::kNumParams> last;
+    parameterization_detail::LastCall<M::kNumParams> key;
+    constexpr bool kLobed = M::kFamily != models::ModelFamily::kDiffuse;
+    key.SetKey(grey_specular, d, kLobed ? s : nullptr, kLobed ? (grey_specular ? 1 : 3) : 0,
+               kLobed ? shape : nullptr);
+    if (last.Find(key, params, M::kNumParams)) return;
+    ComputeParams<M, T>(grey_specular, d, s, shape, params);
+    last.Keep(key, params, M::kNumParams);
+  } else {
+    ComputeParams<M, T>(grey_specular, d, s, shape, params);
+  }
+}
+
+// VariablesToParams without the memory of its last call.
+template <typename M, typename T>
+void ComputeParams(bool grey_specular, const T* d, const T* s, const T* shape, T* params) {
   using models::ModelFamily;
   using std::exp;
   if constexpr (M::kFamily == ModelFamily::kDiffuse) {
@@ -101,6 +166,18 @@ void ParamsAndGradients(bool grey_specular, const double* d, const double* s, co
   constexpr bool kLobed = kHasLobe<M>;
   const int s_size = kLobed ? (grey_specular ? 1 : 3) : 0;
   const int variables = 3 + s_size + (kLobed ? 1 : 0);
+  // Remembered as params, then gradients.
+  constexpr int kOutputs = M::kNumParams * (1 + FitVariables::kMaxVariables);
+  thread_local parameterization_detail::LastCall<kOutputs> last;
+  parameterization_detail::LastCall<kOutputs> key;
+  key.SetKey(grey_specular, d, s, s_size, kLobed ? shape : nullptr);
+  const int outputs = M::kNumParams * (1 + variables);
+  double kept[kOutputs];
+  if (last.Find(key, kept, outputs)) {
+    std::copy(kept, kept + M::kNumParams, params);
+    std::copy(kept + M::kNumParams, kept + outputs, gradients);
+    return;
+  }
   Jet d_jet[3], s_jet[3], shape_jet[1];
   int slot = 0;
   for (int c = 0; c < 3; ++c) d_jet[c] = Jet(d[c], slot++);
@@ -112,6 +189,9 @@ void ParamsAndGradients(bool grey_specular, const double* d, const double* s, co
     params[p] = params_jet[p].a;
     for (int k = 0; k < variables; ++k) gradients[p * variables + k] = params_jet[p].v[k];
   }
+  std::copy(params, params + M::kNumParams, kept);
+  std::copy(gradients, gradients + M::kNumParams * variables, kept + M::kNumParams);
+  last.Keep(key, kept, outputs);
 }
 
 // The inverse of VariablesToParams (grey_specular off): the fitter's variables of a model's
