@@ -61,33 +61,48 @@ void NeighbourAreas(const std::vector<const Vec3*>& directions, std::vector<doub
 }
 
 // A measurement's samples chunk by chunk: views of Measurement::samples, or made by its
-// SampleSource into a buffer of the calling thread's.
+// SampleSource into a buffer of the calling thread's, with their cells' measures when the source
+// knows them.
 class SampleChunks {
  public:
   SampleChunks(const Measurement& measurement, size_t chunk_size)
       : measurement_(measurement), chunk_size_(chunk_size) {}
   size_t size() const { return measurement_.sample_count(); }
   size_t chunks() const { return (size() + chunk_size_ - 1) / chunk_size_; }
-  // visit(samples, first, count): samples[0, count) are the measurement's [first, first + count).
+  // visit(samples, measures, first, count): samples[0, count) are the measurement's [first,
+  // first + count); measures[0, count) their cells' measures (SampleSource::Measures), or null
+  // when not asked for or not known.
   template <typename Visitor>
-  void Visit(size_t chunk, const Visitor& visit) const {
+  void Visit(size_t chunk, bool with_measures, const Visitor& visit) const {
     const size_t first = chunk * chunk_size_;
     const size_t count = std::min(size(), first + chunk_size_) - first;
-    if (measurement_.sample_source == nullptr) {
-      visit(measurement_.samples.data() + first, first, count);
+    const SampleSource* source = measurement_.sample_source.get();
+    if (source == nullptr) {
+      visit(measurement_.samples.data() + first, nullptr, first, count);
       return;
     }
     // Reused by every chunk the thread makes (1.3 MB, resident after its first chunk).
-    std::vector<Sample>& made = buffers_.local();
-    made.resize(count);
-    measurement_.sample_source->Make(first, first + count, made.data());
-    visit(made.data(), first, count);
+    Buffers& buffers = buffers_.local();
+    buffers.samples.resize(count);
+    source->Make(first, first + count, buffers.samples.data());
+    const double* measures = nullptr;
+    if (with_measures) {
+      buffers.measures.resize(count);
+      if (source->Measures(first, first + count, buffers.measures.data())) {
+        measures = buffers.measures.data();
+      }
+    }
+    visit(buffers.samples.data(), measures, first, count);
   }
 
  private:
+  struct Buffers {
+    std::vector<Sample> samples;
+    std::vector<double> measures;
+  };
   const Measurement& measurement_;
   size_t chunk_size_;
-  mutable tbb::enumerable_thread_specific<std::vector<Sample>> buffers_;
+  mutable tbb::enumerable_thread_specific<Buffers> buffers_;
 };
 
 }  // namespace
@@ -119,7 +134,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   const size_t chunks = source.chunks();
   std::vector<size_t> first_usable(chunks + 1, 0), missing(chunks, 0);
   tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
-    source.Visit(chunk, [&](const Sample* samples, size_t /*first*/, size_t count) {
+    source.Visit(chunk, false, [&](const Sample* samples, const double*, size_t, size_t count) {
       for (size_t k = 0; k < count; ++k) {
         first_usable[chunk + 1] += UsableForFit(samples[k]);
         missing[chunk] += samples[k].missing;
@@ -139,8 +154,11 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   }
   const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
   std::vector<size_t> source_index(per_sample_columns ? count : 0);
+  // The source's own measures are those of the reader's cell measure.
+  const bool source_measures = cells != nullptr && cells == measurement.cell_measure;
   tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
-    source.Visit(chunk, [&](const Sample* samples, size_t first, size_t count_in_chunk) {
+    source.Visit(chunk, source_measures, [&](const Sample* samples, const double* measures,
+                                             size_t first, size_t count_in_chunk) {
       size_t u = first_usable[chunk];
       for (size_t k = 0; k < count_in_chunk; ++k) {
         if (!UsableForFit(samples[k])) continue;
@@ -148,7 +166,11 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
         fit_sample.wi = samples[k].wi;
         fit_sample.wo = samples[k].wo;
         fit_sample.value = samples[k].value;
-        if (cells != nullptr) fit_sample.weight = cells->Measure(fit_sample.wi, fit_sample.wo);
+        if (measures != nullptr) {
+          fit_sample.weight = measures[k];
+        } else if (cells != nullptr) {
+          fit_sample.weight = cells->Measure(fit_sample.wi, fit_sample.wo);
+        }
         if (per_sample_columns) source_index[u] = first + k;
         ++u;
       }

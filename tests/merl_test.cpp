@@ -348,6 +348,39 @@ TEST(Merl, SamplesMadeOnDemandAreTheSamplesOfAFullRead) {
   }
 }
 
+// The measures a sample source hands out by cell index are those the cell measure finds by
+// locating each made sample's directions on the grid again, bit for bit, for every cell of the
+// table (so a fit's weights do not depend on which of the two it asked).
+TEST(Merl, MeasuresByCellAreTheMeasuresOfTheSamplesDirections) {
+  ScratchDir dir;
+  const MerlTable written = RandomTable(17, -300.0, 3000.0);
+  const std::string path = dir.File("measures.binary");
+  written.Write(path);
+  ReadOptions lean;
+  lean.samples = false;
+  lean.evaluator = false;
+  const Measurement on_demand = ReadMeasurement(path, lean);
+  ASSERT_NE(on_demand.sample_source, nullptr);
+  ASSERT_NE(on_demand.cell_measure, nullptr);
+  const size_t count = on_demand.sample_count();
+  std::vector<Sample> made(count);
+  on_demand.sample_source->Make(0, count, made.data());
+  std::vector<double> measures(count, -1.0);
+  ASSERT_TRUE(on_demand.sample_source->Measures(0, count, measures.data()));
+  size_t above = 0;
+  for (size_t k = 0; k < count; ++k) {
+    if (made[k].wi.z() <= 0 || made[k].wo.z() <= 0) continue;  // no fit weighs these
+    ++above;
+    ASSERT_EQ(measures[k], on_demand.cell_measure->Measure(made[k].wi, made[k].wo)) << k;
+    ASSERT_GT(measures[k], 0.0) << k;
+  }
+  EXPECT_GT(above, count / 2);
+  // A range that starts and ends inside rows gives the same values.
+  std::vector<double> part(1000);
+  ASSERT_TRUE(on_demand.sample_source->Measures(700001, 701001, part.data()));
+  for (size_t k = 0; k < part.size(); ++k) EXPECT_EQ(part[k], measures[700001 + k]) << k;
+}
+
 // The fit of a table read with its samples made on demand is the fit of the full read: the same
 // parameters, metrics, standard errors and warnings, bit for bit.
 TEST(Merl, AFitOfSamplesMadeOnDemandIsTheFitOfAFullRead) {

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <thread>
 
 #include "core/angles.h"
 #include "core/errors.h"
@@ -432,6 +433,43 @@ TEST(MicrofacetSampling, VisibleNormalImportanceAgreesWithQuadrature) {
           << theta_deg << " channel " << c;
     }
   }
+}
+
+// The parameterization remembers its last call per thread (parameterization.h): calls that
+// alternate between variables differing in one bit, and grey or not, return what a thread that
+// never saw the others computes, bit for bit, parameters and gradients.
+template <typename M>
+void ExpectRememberedParamsAreFresh() {
+  constexpr int kParams = M::kNumParams, kMost = kParams * fitters::FitVariables::kMaxVariables;
+  struct Call {
+    bool grey;
+    double d[3], s[3], shape[1];
+  };
+  Call a{false, {0.3, -1.0, 2.0}, {-2.0, -2.5, -3.0}, {std::log(0.2)}};
+  Call b = a;
+  b.shape[0] = std::nextafter(a.shape[0], 0.0);
+  Call c = a;
+  c.grey = true;
+  const auto compute = [](const Call& call, double* params, double* gradients, double* plain) {
+    fitters::ParamsAndGradients<M>(call.grey, call.d, call.s, call.shape, params, gradients);
+    fitters::VariablesToParams<M, double>(call.grey, call.d, call.s, call.shape, plain);
+  };
+  for (const Call* call : {&a, &b, &a, &c, &a, &a}) {
+    double params[kParams], gradients[kMost] = {}, plain[kParams];
+    compute(*call, params, gradients, plain);
+    double fresh_params[kParams], fresh_gradients[kMost] = {}, fresh_plain[kParams];
+    std::thread([&] { compute(*call, fresh_params, fresh_gradients, fresh_plain); }).join();
+    for (int p = 0; p < kParams; ++p) {
+      EXPECT_EQ(params[p], fresh_params[p]) << M::kName << " param " << p;
+      EXPECT_EQ(plain[p], fresh_plain[p]) << M::kName << " param " << p;
+    }
+    for (int g = 0; g < kMost; ++g) EXPECT_EQ(gradients[g], fresh_gradients[g]) << M::kName << g;
+  }
+}
+
+TEST(MicrofacetBound, RememberedParametersAreThoseComputedAfresh) {
+  ExpectRememberedParamsAreFresh<models::Ggx>();
+  ExpectRememberedParamsAreFresh<models::Beckmann>();
 }
 
 }  // namespace

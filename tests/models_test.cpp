@@ -12,6 +12,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -629,6 +630,50 @@ TEST(Registry, UnknownModelThrowsUsageErrorListingTheKnownOnes) {
   EXPECT_THROW(VisitModelType("nope", [](auto) { return 0; }), UsageError);
   EXPECT_THROW(FindModel(""), UsageError);
   EXPECT_THROW(FindModel("Phong"), UsageError);  // names are case-sensitive
+}
+
+// ClampedPow in doubles remembers its last results (models/common.h): whatever the order of the
+// calls, repeated or new bases, colliding table slots, exponents that change between calls, and
+// from several threads at once, it returns std::pow's bits, and 0 at or below zero.
+TEST(Models, RememberedPowIsPowBitForBit) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  // A few hundred bases, as a gridded table's lobe cosines repeat, and a few exponents.
+  std::vector<double> bases(300), exponents = {1.0, 80.0, 80.0000000001, 1e4, 0.5};
+  for (double& base : bases) base = unit(rng);
+  bases[0] = 1.0;
+  bases[1] = std::numeric_limits<double>::denorm_min();
+  bases[2] = std::numeric_limits<double>::quiet_NaN();
+  const auto check = [&](uint64_t seed, int calls) {
+    std::mt19937_64 order(seed);
+    for (int k = 0; k < calls; ++k) {
+      const double x = bases[order() % bases.size()];
+      const double e = exponents[order() % exponents.size()];
+      const double expected = std::pow(x, e);
+      const double got = models::ClampedPow(x, e);
+      if (std::isnan(expected)) {
+        ASSERT_TRUE(std::isnan(got)) << x << " " << e;
+      } else {
+        ASSERT_EQ(got, expected) << x << " " << e;  // bit for bit (no -0 can arise here)
+      }
+    }
+  };
+  check(1, 200000);
+  // Runs of one base at one exponent, then the next: the order of a fit's pass over a table.
+  for (double e : exponents) {
+    for (double x : bases) {
+      for (int repeat = 0; repeat < 3; ++repeat) {
+        if (!std::isnan(x)) ASSERT_EQ(models::ClampedPow(x, e), std::pow(x, e)) << x << " " << e;
+      }
+    }
+  }
+  EXPECT_EQ(models::ClampedPow(0.0, 3.0), 0.0);
+  EXPECT_EQ(models::ClampedPow(-0.25, 2.0), 0.0);
+  EXPECT_EQ(models::ClampedPow(-0.0, 2.0), 0.0);
+  // Every thread has its own memory: threads racing over the same bases stay exact.
+  std::vector<std::thread> threads;
+  for (uint64_t seed = 2; seed < 6; ++seed) threads.emplace_back(check, seed, 50000);
+  for (std::thread& thread : threads) thread.join();
 }
 
 }  // namespace

@@ -62,6 +62,10 @@ class SampleSource {
   // Writes samples [begin, end) to out[0, end - begin): the same values the reader would have
   // put in Measurement::samples. Safe to call from several threads at once.
   virtual void Make(size_t begin, size_t end, Sample* out) const = 0;
+  // Writes the measures of samples [begin, end) to out[0, end - begin), the values
+  // Measurement::cell_measure gives for them, and returns true; or returns false, writing
+  // nothing, if the source does not know its cells (a consumer then asks cell_measure).
+  virtual bool Measures(size_t /*begin*/, size_t /*end*/, double* /*out*/) const { return false; }
 };
 
 struct Measurement {

@@ -66,28 +66,45 @@ std::shared_ptr<const CellMeasure> MerlCellMeasure() {
   return measure;
 }
 
-double MerlTable::CellMeasure(const Vec3& wi, const Vec3& wo) {
-  // The measure of every (theta_h, theta_d) bin, computed once: a fit asks for a million cells.
+namespace {
+
+// The measure of every (theta_h, theta_d) bin of the MERL grid (MerlTable::CellMeasure), computed
+// once: a fit asks for a million cells.
+const std::vector<double>& BinMeasures() {
+  using T = MerlTable;
   static const std::vector<double> measures = [] {
-    std::vector<double> table(kThetaHalfBins * kThetaDiffBins);
-    for (int i = 0; i < kThetaHalfBins; ++i) {
-      for (int j = 0; j < kThetaDiffBins; ++j) {
-        const HalfDiff centre = CellCentre(i, j, 0);
-        const double n = kThetaHalfBins;
+    std::vector<double> table(T::kThetaHalfBins * T::kThetaDiffBins);
+    for (int i = 0; i < T::kThetaHalfBins; ++i) {
+      for (int j = 0; j < T::kThetaDiffBins; ++j) {
+        const HalfDiff centre = T::CellCentre(i, j, 0);
+        const double n = T::kThetaHalfBins;
         const double d_theta_h = ((i + 1) * (i + 1) - i * i) / (n * n) * (0.5 * kPi);
-        const double d_theta_d = 0.5 * kPi / kThetaDiffBins;
-        const double d_phi_d = kPi / kPhiDiffBins;
-        table[i * kThetaDiffBins + j] = 4.0 * std::cos(centre.theta_d) * std::sin(centre.theta_h) *
-                                        std::sin(centre.theta_d) * d_theta_h * d_theta_d * d_phi_d;
+        const double d_theta_d = 0.5 * kPi / T::kThetaDiffBins;
+        const double d_phi_d = kPi / T::kPhiDiffBins;
+        table[i * T::kThetaDiffBins + j] = 4.0 * std::cos(centre.theta_d) *
+                                           std::sin(centre.theta_h) * std::sin(centre.theta_d) *
+                                           d_theta_h * d_theta_d * d_phi_d;
       }
     }
     return table;
   }();
+  return measures;
+}
+
+}  // namespace
+
+double MerlTable::CellMeasure(const Vec3& wi, const Vec3& wo) {
   // Only theta_h and theta_d are needed: cos theta_h = h.z and cos theta_d = wi.h.
   const Vec3 half_vector = (wi + wo).normalized();
   const int i = ThetaHalfIndex(std::acos(std::clamp(half_vector.z(), -1.0, 1.0)));
   const int j = ThetaDiffIndex(std::acos(std::clamp(wi.dot(half_vector), -1.0, 1.0)));
-  return measures[i * kThetaDiffBins + j];
+  return BinMeasures()[i * kThetaDiffBins + j];
+}
+
+void MerlTable::CellMeasures(int64_t begin, int64_t end, double* out) {
+  const std::vector<double>& measures = BinMeasures();
+  // A cell's (theta_h, theta_d) bin is its index without the phi_d digit.
+  for (int64_t cell = begin; cell < end; ++cell) out[cell - begin] = measures[cell / kPhiDiffBins];
 }
 
 const Rgb MerlTable::kScale(1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0);
@@ -296,6 +313,11 @@ class MerlSamples final : public SampleSource {
   size_t size() const override { return MerlTable::kCells; }
   void Make(size_t begin, size_t end, Sample* out) const override {
     table_->MakeSamples(static_cast<int64_t>(begin), static_cast<int64_t>(end), out);
+  }
+  // A sample's cell is its index: no direction has to be located on the grid again.
+  bool Measures(size_t begin, size_t end, double* out) const override {
+    MerlTable::CellMeasures(static_cast<int64_t>(begin), static_cast<int64_t>(end), out);
+    return true;
   }
 
  private:

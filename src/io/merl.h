@@ -68,6 +68,9 @@ class MerlTable {
   // dwi dwo of the cell holding (wi, wo): 4 cos(theta_d) dw_h dw_d with phi_h integrated out
   // (isotropy), theta_h bins of width ((i+1)^2 - i^2) / 90^2 * pi/2.
   static double CellMeasure(const Vec3& wi, const Vec3& wo);
+  // The same for cells [begin, end) by index, written to out[0, end - begin): the measures of
+  // the samples MakeSamples makes of them.
+  static void CellMeasures(int64_t begin, int64_t end, double* out);
 
   // Stored (unscaled) value of a cell; negative means missing.
   double raw(int channel, int64_t cell) const {
