@@ -157,24 +157,25 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   // The source's own measures are those of the reader's cell measure.
   const bool source_measures = cells != nullptr && cells == measurement.cell_measure;
   tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
-    source.Visit(chunk, source_measures, [&](const Sample* samples, const double* measures,
-                                             size_t first, size_t count_in_chunk) {
-      size_t u = first_usable[chunk];
-      for (size_t k = 0; k < count_in_chunk; ++k) {
-        if (!UsableForFit(samples[k])) continue;
-        FitSample& fit_sample = prepared.samples[u];
-        fit_sample.wi = samples[k].wi;
-        fit_sample.wo = samples[k].wo;
-        fit_sample.value = samples[k].value;
-        if (measures != nullptr) {
-          fit_sample.weight = measures[k];
-        } else if (cells != nullptr) {
-          fit_sample.weight = cells->Measure(fit_sample.wi, fit_sample.wo);
-        }
-        if (per_sample_columns) source_index[u] = first + k;
-        ++u;
-      }
-    });
+    source.Visit(
+        chunk, source_measures,
+        [&](const Sample* samples, const double* measures, size_t first, size_t count_in_chunk) {
+          size_t u = first_usable[chunk];
+          for (size_t k = 0; k < count_in_chunk; ++k) {
+            if (!UsableForFit(samples[k])) continue;
+            FitSample& fit_sample = prepared.samples[u];
+            fit_sample.wi = samples[k].wi;
+            fit_sample.wo = samples[k].wo;
+            fit_sample.value = samples[k].value;
+            if (measures != nullptr) {
+              fit_sample.weight = measures[k];
+            } else if (cells != nullptr) {
+              fit_sample.weight = cells->Measure(fit_sample.wi, fit_sample.wo);
+            }
+            if (per_sample_columns) source_index[u] = first + k;
+            ++u;
+          }
+        });
   });
   std::vector<FitSample>& samples = prepared.samples;
   if (samples.empty()) {
