@@ -204,8 +204,9 @@ std::string TracedSurfaceSample::Modelled() const {
 
 namespace {
 
-// What one path delivered, kept until its batch is summed in ray order.
-struct PathResult {
+// What one path delivered, kept until its batch is summed in ray order. One cache line each:
+// the sums read them out of trace order, and a result straddling two lines cost two misses.
+struct alignas(64) PathResult {
   Vec3 direction = Vec3::Zero();  // the escape direction
   Rgb power = Rgb::Zero();        // the throughput that escaped (0 if the path did not)
   double incident = 0;            // the source weight of the ray
