@@ -16,6 +16,7 @@
 
 #include "core/angles.h"
 #include "fitters/analytic_cost.h"
+#include "fitters/gram_solve.h"
 #include "fitters/parameterization.h"
 #include "fitters/residual.h"
 #include "fitters/select.h"
@@ -477,6 +478,60 @@ TEST(Fit, NormalSumsWithoutTheJacobianMatchTheJacobianRows) {
   ExpectNormalSumsMatchJacobianRows<models::BlinnPhongExact>(kTruths[3]);
   ExpectNormalSumsMatchJacobianRows<models::Ggx>(kTruths[4]);
   ExpectNormalSumsMatchJacobianRows<models::Beckmann>(kTruths[5]);
+}
+
+// GramCost keeps its last Jacobian evaluation (gram_solve.h): asked again at the same variables,
+// or after other points, it hands out what a fresh GramCost computes there, bit for bit, residuals
+// and Jacobian; cost-only evaluations in between change nothing.
+template <typename M>
+void ExpectRememberedGramIsFresh(const char* truth_text) {
+  Noise noise;
+  noise.relative = 0.05;
+  const fitters::PreparedSamples prepared =
+      fitters::PrepareSamples(Synthesize(ParseModel(truth_text), noise));
+  const fitters::FitOptions options;
+  const fitters::ModelFitter<M> fitter(options);
+  const int n = 3 + fitter.SpecularSize() + 1;
+  double d_a[3] = {0.3, -0.2, 0.1}, s_a[3] = {-1.0, -0.5, 0.2}, shape_a[1] = {std::log(0.3)};
+  if (M::kFamily != models::ModelFamily::kMicrofacet) shape_a[0] = std::log(40.0);
+  double d_b[3] = {0.3, -0.2, 0.1}, s_b[3] = {-1.0, -0.5, 0.2};
+  double shape_b[1] = {std::nextafter(shape_a[0], 0.0)};  // one bit away
+  const double* at_a[] = {d_a, s_a, shape_a};
+  const double* at_b[] = {d_b, s_b, shape_b};
+  struct Output {
+    std::vector<double> residuals, jacobian[3];
+  };
+  const auto evaluate = [&](const fitters::GramCost<M>& cost, const double* const* at) {
+    Output out;
+    out.residuals.assign(n + 1, 0.0);
+    const int sizes[] = {3, fitter.SpecularSize(), 1};
+    double* blocks[3];
+    for (int b = 0; b < 3; ++b) {
+      out.jacobian[b].assign((n + 1) * sizes[b], 0.0);
+      blocks[b] = out.jacobian[b].data();
+    }
+    EXPECT_TRUE(cost.Evaluate(at, out.residuals.data(), blocks));
+    return out;
+  };
+  const auto fresh = [&](const double* const* at) {
+    return evaluate(fitters::GramCost<M>(fitter, prepared.samples), at);
+  };
+  const Output expected_a = fresh(at_a), expected_b = fresh(at_b);
+  const fitters::GramCost<M> kept(fitter, prepared.samples);
+  for (const bool a : {true, true, false, true, false, false, true}) {
+    double cost_only[8];
+    ASSERT_TRUE(kept.Evaluate(a ? at_b : at_a, cost_only, nullptr));  // the other point
+    const Output got = evaluate(kept, a ? at_a : at_b);
+    const Output& expected = a ? expected_a : expected_b;
+    EXPECT_EQ(got.residuals, expected.residuals) << M::kName;
+    for (int b = 0; b < 3; ++b) EXPECT_EQ(got.jacobian[b], expected.jacobian[b]) << M::kName;
+  }
+  EXPECT_NE(expected_a.residuals, expected_b.residuals);  // the two points differ
+}
+
+TEST(Fit, RememberedGramEvaluationIsFresh) {
+  ExpectRememberedGramIsFresh<models::BlinnPhong>(kTruths[2]);
+  ExpectRememberedGramIsFresh<models::Beckmann>(kTruths[5]);
 }
 
 // The same for the microfacet models, whose parameterization runs through the tabulated
