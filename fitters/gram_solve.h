@@ -17,15 +17,15 @@
 // digits. A trial point's cost is the rows' own (HalfSquaredSum), as the last residual.
 //
 // Ceres asks for the Jacobian at a point it has asked for just before (22-42 % of the requests of
-// `--model auto` on a MERL-sized table), so the last W is kept with its variables, compared bit
-// for bit, and handed out again: the pass over the rows is what costs.
+// `--model auto` on a MERL-sized table), so the last W is kept with its variables
+// (LastCallOfVariables, parameterization.h) and handed out again: the pass over the rows is what
+// costs.
 #pragma once
 
 #include <ceres/ceres.h>
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -64,22 +64,16 @@ class GramCost final : public ceres::CostFunction {
       residuals[n] = std::sqrt(2 * cost);
       return std::isfinite(cost);
     }
-    double key[FitVariables::kMaxVariables];
-    int k = 0;
-    for (int c = 0; c < 3; ++c) key[k++] = parameters[0][c];
-    if constexpr (ModelFitter<ModelType>::kLobed) {
-      for (int c = 0; c < fitter_.SpecularSize(); ++c) key[k++] = parameters[1][c];
-      key[k++] = parameters[2][0];
+    constexpr bool kLobed = ModelFitter<ModelType>::kLobed;
+    LastW key;
+    key.SetKey(fitter_.options().grey_specular, at.d, kLobed ? at.s : nullptr,
+               kLobed ? fitter_.SpecularSize() : 0, kLobed ? at.shape : nullptr);
+    const int entries = (n + 1) * (n + 1);
+    Eigen::MatrixXd w(n + 1, n + 1);
+    if (!last_.Find(key, w.data(), entries)) {
+      if (!Factor(at, &w)) return false;
+      last_.Keep(key, w.data(), entries);
     }
-    if (!has_last_ || std::memcmp(key, last_key_, sizeof(double) * n) != 0) {
-      if (!Factor(at, &last_w_)) {
-        has_last_ = false;
-        return false;
-      }
-      std::memcpy(last_key_, key, sizeof(double) * n);
-      has_last_ = true;
-    }
-    const Eigen::MatrixXd& w = last_w_;
     for (int i = 0; i <= n; ++i) residuals[i] = w(i, n);
     const std::vector<int32_t>& sizes = parameter_block_sizes();
     int column = 0;
@@ -121,11 +115,11 @@ class GramCost final : public ceres::CostFunction {
   const ModelFitter<ModelType>& fitter_;
   Variables unused_;  // the rows' problem is only read through its cost functions
   std::unique_ptr<ceres::Problem> rows_;
-  // The last Jacobian evaluation: its variables and W. One problem is evaluated on one thread
-  // (its one residual block), so no lock guards them.
-  mutable bool has_last_ = false;
-  mutable double last_key_[FitVariables::kMaxVariables] = {};
-  mutable Eigen::MatrixXd last_w_;
+  // The last Jacobian evaluation's W, column by column. One problem is evaluated on one thread
+  // (its one residual block), so no lock guards it.
+  using LastW =
+      LastCallOfVariables<(FitVariables::kMaxVariables + 1) * (FitVariables::kMaxVariables + 1)>;
+  mutable LastW last_;
 };
 
 // Minimizes the least squares over `samples` from `v` (updated in place) within the fitter's box,

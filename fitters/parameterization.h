@@ -64,15 +64,14 @@ T Logistic(const T& x) {
 
 inline double Logit(double p) { return std::log(p / (1.0 - p)); }
 
-namespace parameterization_detail {
-
-// One call of a pure function of the fitter's variables, remembered per thread (LastCall::Find,
-// LastCall::Keep). A fit evaluates its residual batches, tens to thousands a pass, at one point
-// of the variables, and every batch asks for the same parameters: for a microfacet model a
-// search of the albedo table per channel, through Jets with their derivatives. The inputs are
-// compared bit for bit, so a hit returns exactly what the function returned.
+// The last call of a pure function of the fitter's variables, remembered (Find, Keep): the
+// inputs compared bit for bit, so a hit hands out exactly what the function returned. A fit
+// evaluates at one point of the variables many times over: every residual batch of a pass asks
+// for the same parameters (VariablesToParams, ParamsAndGradients: for a microfacet model a
+// search of the albedo table per channel, through Jets), and Ceres asks for the same Jacobian
+// twice (GramCost, gram_solve.h).
 template <int kOutputs>
-class LastCall {
+class LastCallOfVariables {
  public:
   // The variables as one key: d[3], then s[s_size] and shape[1] when given.
   void SetKey(bool grey_specular, const double* d, const double* s, int s_size,
@@ -84,7 +83,7 @@ class LastCall {
     if (shape != nullptr) key_[size_++] = shape[0];
   }
   // True, with the outputs copied to out[0, count), if the last kept call had this key.
-  bool Find(const LastCall& key, double* out, int count) const {
+  bool Find(const LastCallOfVariables& key, double* out, int count) const {
     if (!valid_ || key.grey_ != grey_ || key.size_ != size_ ||
         std::memcmp(key.key_, key_, sizeof(double) * size_) != 0) {
       return false;
@@ -92,7 +91,7 @@ class LastCall {
     std::copy(out_, out_ + count, out);
     return true;
   }
-  void Keep(const LastCall& key, const double* out, int count) {
+  void Keep(const LastCallOfVariables& key, const double* out, int count) {
     *this = key;
     std::copy(out, out + count, out_);
     valid_ = true;
@@ -105,8 +104,6 @@ class LastCall {
   double out_[kOutputs];
 };
 
-}  // namespace parameterization_detail
-
 template <typename M, typename T>
 void ComputeParams(bool grey_specular, const T* d, const T* s, const T* shape, T* params);
 
@@ -114,8 +111,9 @@ void ComputeParams(bool grey_specular, const T* d, const T* s, const T* shape, T
 template <typename M, typename T>
 void VariablesToParams(bool grey_specular, const T* d, const T* s, const T* shape, T* params) {
   if constexpr (std::is_same_v<T, double>) {
-    thread_local parameterization_detail::LastCall<M::kNumParams> last;
-    parameterization_detail::LastCall<M::kNumParams> key;
+    // Per thread: the batches of a pass run on every core.
+    thread_local LastCallOfVariables<M::kNumParams> last;
+    LastCallOfVariables<M::kNumParams> key;
     constexpr bool kLobed = M::kFamily != models::ModelFamily::kDiffuse;
     key.SetKey(grey_specular, d, kLobed ? s : nullptr, kLobed ? (grey_specular ? 1 : 3) : 0,
                kLobed ? shape : nullptr);
@@ -168,8 +166,8 @@ void ParamsAndGradients(bool grey_specular, const double* d, const double* s, co
   const int variables = 3 + s_size + (kLobed ? 1 : 0);
   // Remembered as params, then gradients.
   constexpr int kOutputs = M::kNumParams * (1 + FitVariables::kMaxVariables);
-  thread_local parameterization_detail::LastCall<kOutputs> last;
-  parameterization_detail::LastCall<kOutputs> key;
+  thread_local LastCallOfVariables<kOutputs> last;
+  LastCallOfVariables<kOutputs> key;
   key.SetKey(grey_specular, d, s, s_size, kLobed ? shape : nullptr);
   const int outputs = M::kNumParams * (1 + variables);
   double kept[kOutputs];

@@ -83,6 +83,14 @@ Measurement Synthesize(const Model& model, const Noise& noise) {
   return measurement;
 }
 
+// The prepared samples of a model string's synthetic measurement with 5 % relative noise: what
+// the Jacobian tests evaluate on.
+fitters::PreparedSamples NoisyPreparedSamples(const char* truth_text) {
+  Noise noise;
+  noise.relative = 0.05;
+  return fitters::PrepareSamples(Synthesize(ParseModel(truth_text), noise));
+}
+
 void ExpectRelativelyNear(const Model& fitted, const Model& truth, double tolerance) {
   for (size_t p = 0; p < truth.params().size(); ++p) {
     const double expected = truth.params()[p];
@@ -411,10 +419,7 @@ TEST(Fit, AnalyticJacobianMatchesAutomaticAndFiniteDifferences) {
 // J^T J, J^T diag(e) J for e the squared residual and for given expectations, J^T r, |r|^2 / 2.
 template <typename M>
 void ExpectNormalSumsMatchJacobianRows(const char* truth_text) {
-  Noise noise;
-  noise.relative = 0.05;
-  const fitters::PreparedSamples prepared =
-      fitters::PrepareSamples(Synthesize(ParseModel(truth_text), noise));
+  const fitters::PreparedSamples prepared = NoisyPreparedSamples(truth_text);
   for (const fitters::Loss loss :
        {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
     for (const bool grey : {false, true}) {
@@ -485,10 +490,7 @@ TEST(Fit, NormalSumsWithoutTheJacobianMatchTheJacobianRows) {
 // and Jacobian; cost-only evaluations in between change nothing.
 template <typename M>
 void ExpectRememberedGramIsFresh(const char* truth_text) {
-  Noise noise;
-  noise.relative = 0.05;
-  const fitters::PreparedSamples prepared =
-      fitters::PrepareSamples(Synthesize(ParseModel(truth_text), noise));
+  const fitters::PreparedSamples prepared = NoisyPreparedSamples(truth_text);
   const fitters::FitOptions options;
   const fitters::ModelFitter<M> fitter(options);
   const int n = 3 + fitter.SpecularSize() + 1;
@@ -539,10 +541,7 @@ TEST(Fit, RememberedGramEvaluationIsFresh) {
 // is the chosen node's, which finite differences see too away from a switch of node.
 template <typename M>
 void ExpectMicrofacetResidualGradientsMatch(const char* truth_text) {
-  const Model truth = ParseModel(truth_text);
-  Noise noise;
-  noise.relative = 0.05;
-  const fitters::PreparedSamples prepared = fitters::PrepareSamples(Synthesize(truth, noise));
+  const fitters::PreparedSamples prepared = NoisyPreparedSamples(truth_text);
   using Residual = fitters::BatchResidual<M>;
   const int count = 8;
   ceres::AutoDiffCostFunction<Residual, ceres::DYNAMIC, 3, 3, 1> cost(
