@@ -156,7 +156,8 @@ void ComputeParams(bool grey_specular, const T* d, const T* s, const T* shape, T
 
 // VariablesToParams and its Jacobian, d params / d variables (row-major, kNumParams rows of
 // `variables` columns: d[3], then s[1 or 3] and shape[1] for a lobed model), by automatic
-// differentiation with Jets. The parameters are the same bits as VariablesToParams<M, double>'s.
+// differentiation with Jets. The parameters are the Jets' values, which can differ from
+// VariablesToParams<M, double>'s in the last bit: a Jet divides by multiplying with the inverse.
 template <typename M>
 void ParamsAndGradients(bool grey_specular, const double* d, const double* s, const double* shape,
                         double* params, double* gradients) {
