@@ -64,10 +64,8 @@ class GramCost final : public ceres::CostFunction {
       residuals[n] = std::sqrt(2 * cost);
       return std::isfinite(cost);
     }
-    constexpr bool kLobed = ModelFitter<ModelType>::kLobed;
     LastW key;
-    key.SetKey(fitter_.options().grey_specular, at.d, kLobed ? at.s : nullptr,
-               kLobed ? fitter_.SpecularSize() : 0, kLobed ? at.shape : nullptr);
+    key.SetKey<ModelType>(fitter_.options().grey_specular, at.d, at.s, at.shape);
     const int entries = (n + 1) * (n + 1);
     Eigen::MatrixXd w(n + 1, n + 1);
     if (!last_.Find(key, w.data(), entries)) {

@@ -73,14 +73,16 @@ inline double Logit(double p) { return std::log(p / (1.0 - p)); }
 template <int kOutputs>
 class LastCallOfVariables {
  public:
-  // The variables as one key: d[3], then s[s_size] and shape[1] when given.
-  void SetKey(bool grey_specular, const double* d, const double* s, int s_size,
-              const double* shape) {
+  // Model M's variables as one key: d[3], then for a lobed model s[1 or 3] and shape[1].
+  template <typename M>
+  void SetKey(bool grey_specular, const double* d, const double* s, const double* shape) {
     grey_ = grey_specular;
     size_ = 0;
     for (int c = 0; c < 3; ++c) key_[size_++] = d[c];
-    for (int c = 0; c < s_size; ++c) key_[size_++] = s[c];
-    if (shape != nullptr) key_[size_++] = shape[0];
+    if constexpr (kHasLobe<M>) {
+      for (int c = 0; c < (grey_specular ? 1 : 3); ++c) key_[size_++] = s[c];
+      key_[size_++] = shape[0];
+    }
   }
   // True, with the outputs copied to out[0, count), if the last kept call had this key.
   bool Find(const LastCallOfVariables& key, double* out, int count) const {
@@ -103,27 +105,6 @@ class LastCallOfVariables {
   double key_[FitVariables::kMaxVariables];
   double out_[kOutputs];
 };
-
-template <typename M, typename T>
-void ComputeParams(bool grey_specular, const T* d, const T* s, const T* shape, T* params);
-
-// Fills model M's params from the fitter's variables (s and shape unused for lambert).
-template <typename M, typename T>
-void VariablesToParams(bool grey_specular, const T* d, const T* s, const T* shape, T* params) {
-  if constexpr (std::is_same_v<T, double>) {
-    // Per thread: the batches of a pass run on every core.
-    thread_local LastCallOfVariables<M::kNumParams> last;
-    LastCallOfVariables<M::kNumParams> key;
-    constexpr bool kLobed = M::kFamily != models::ModelFamily::kDiffuse;
-    key.SetKey(grey_specular, d, kLobed ? s : nullptr, kLobed ? (grey_specular ? 1 : 3) : 0,
-               kLobed ? shape : nullptr);
-    if (last.Find(key, params, M::kNumParams)) return;
-    ComputeParams<M, T>(grey_specular, d, s, shape, params);
-    last.Keep(key, params, M::kNumParams);
-  } else {
-    ComputeParams<M, T>(grey_specular, d, s, shape, params);
-  }
-}
 
 // VariablesToParams without the memory of its last call.
 template <typename M, typename T>
@@ -154,6 +135,22 @@ void ComputeParams(bool grey_specular, const T* d, const T* s, const T* shape, T
   }
 }
 
+// Fills model M's params from the fitter's variables (s and shape unused for lambert).
+template <typename M, typename T>
+void VariablesToParams(bool grey_specular, const T* d, const T* s, const T* shape, T* params) {
+  if constexpr (std::is_same_v<T, double>) {
+    // Per thread: the batches of a pass run on every core.
+    thread_local LastCallOfVariables<M::kNumParams> last;
+    LastCallOfVariables<M::kNumParams> key;
+    key.template SetKey<M>(grey_specular, d, s, shape);
+    if (last.Find(key, params, M::kNumParams)) return;
+    ComputeParams<M, T>(grey_specular, d, s, shape, params);
+    last.Keep(key, params, M::kNumParams);
+  } else {
+    ComputeParams<M, T>(grey_specular, d, s, shape, params);
+  }
+}
+
 // VariablesToParams and its Jacobian, d params / d variables (row-major, kNumParams rows of
 // `variables` columns: d[3], then s[1 or 3] and shape[1] for a lobed model), by automatic
 // differentiation with Jets. The parameters are the Jets' values, which can differ from
@@ -169,7 +166,7 @@ void ParamsAndGradients(bool grey_specular, const double* d, const double* s, co
   constexpr int kOutputs = M::kNumParams * (1 + FitVariables::kMaxVariables);
   thread_local LastCallOfVariables<kOutputs> last;
   LastCallOfVariables<kOutputs> key;
-  key.SetKey(grey_specular, d, s, s_size, kLobed ? shape : nullptr);
+  key.template SetKey<M>(grey_specular, d, s, shape);
   const int outputs = M::kNumParams * (1 + variables);
   double kept[kOutputs];
   if (last.Find(key, kept, outputs)) {

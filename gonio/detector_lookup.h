@@ -34,7 +34,7 @@ class DetectorLookup {
   }
 
  private:
-  // Cells per axis over [-1, 1]: 1/128 wide, about the width of a 1e-3 sr detector's cone.
+  // Cells per axis over [-1, 1], 1/128 wide: a 1e-3 sr detector cone (radius 1°) spans about five.
   static constexpr int kCells = 256;
   static int Cell(double coordinate) {
     return std::clamp(static_cast<int>((coordinate + 1.0) * (0.5 * kCells)), 0, kCells - 1);
