@@ -46,7 +46,7 @@ using models::Ggx;
 
 constexpr double kCoatF0 = 0.04;  // a clear dielectric coat of index 1.5, unless fitted
 // The microfacet rungs' own range of alpha.
-constexpr double kMinAlpha = Ggx::kMinAlpha, kMaxAlpha = Ggx::kMaxAlpha;
+constexpr double kMinAlpha = models::GgxLobe::kMinAlpha, kMaxAlpha = models::GgxLobe::kMaxAlpha;
 constexpr int kSamplesPerBlock = 256;
 constexpr size_t kStartSamples = 20000;
 // rho_d (3), f0 (3), alpha, coat alpha; and the coat's f0 where it is fitted.
@@ -73,15 +73,17 @@ void EvalCoat(const T* rho_d, const T* f0, const T& alpha, const T& coat_alpha, 
   }
   const Vec3 h = (wi + wo).normalized();
   const double cos_h = h.z(), cos_d = wi.dot(h);
-  const T coat_lobe =
-      T(coat) * models::SchlickFresnel(cos_d, coat_f0) * Ggx::D<T>(cos_h, coat_alpha) /
-      (T(1) + Ggx::Lambda<T>(cos_i, coat_alpha) + Ggx::Lambda<T>(cos_o, coat_alpha)) /
-      T(4 * cos_i * cos_o);
+  const T coat_lobe = T(coat) * models::SchlickFresnel(cos_d, coat_f0) *
+                      models::GgxLobe::D<T>(cos_h, coat_alpha) /
+                      (T(1) + models::GgxLobe::Lambda<T>(cos_i, coat_alpha) +
+                       models::GgxLobe::Lambda<T>(cos_o, coat_alpha)) /
+                      T(4 * cos_i * cos_o);
   const T transmitted = (T(1) - models::SchlickFresnel(cos_i, coat_f0)) *
                         (T(1) - models::SchlickFresnel(cos_o, coat_f0));
-  const T base_lobe = Ggx::D<T>(cos_h, alpha) /
-                      (T(1) + Ggx::Lambda<T>(cos_i, alpha) + Ggx::Lambda<T>(cos_o, alpha)) /
-                      T(4 * cos_i * cos_o);
+  const T base_lobe =
+      models::GgxLobe::D<T>(cos_h, alpha) /
+      (T(1) + models::GgxLobe::Lambda<T>(cos_i, alpha) + models::GgxLobe::Lambda<T>(cos_o, alpha)) /
+      T(4 * cos_i * cos_o);
   for (int c = 0; c < 3; ++c) {
     f[c] = coat_lobe + transmitted * (T(diffuse) * rho_d[c] * T(kInvPi) +
                                       T(lobe) * models::SchlickFresnel(cos_d, f0[c]) * base_lobe);
@@ -205,8 +207,10 @@ double MaxAlbedo(const CoatParams& p) {
       return sample;
     };
   };
-  const LobeCoordinates coat_lobe{LobeFrame::kHalfVector, p.coat_alpha, &Ggx::kLobeDistribution};
-  const LobeCoordinates base_lobe{LobeFrame::kHalfVector, p.alpha, &Ggx::kLobeDistribution};
+  const LobeCoordinates coat_lobe{LobeFrame::kHalfVector, p.coat_alpha,
+                                  &models::GgxLobe::kLobeDistribution};
+  const LobeCoordinates base_lobe{LobeFrame::kHalfVector, p.alpha,
+                                  &models::GgxLobe::kLobeDistribution};
   const LobeQuadratureOptions options;
   double worst = 0;
   for (int k = 0; k < 90; ++k) {

@@ -112,7 +112,7 @@ void Study(const Settings& settings) {
       std::printf("%g,%d,%.5g,%.5g,%.5g,%.3g,%.5g,%.4g,%.3g,%.5g,%.5g,%.3g,%.5g,%.3g\n", slope,
                   bounces, facets.rms, facets.sigma_x, facets.sigma_y, facets.kurtosis, alpha_l2,
                   l2.model.Param("f0"), l2.model.Param("rho_d"), alpha_log, alpha_weighted,
-                  weighted.stderr_values[weighted.model.info().shape_slot],
+                  weighted.stderr_values[weighted.model.info().shape_slot()],
                   trace.reflected[0] / trace.incident, seconds);
       std::fflush(stdout);
     }

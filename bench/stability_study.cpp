@@ -79,9 +79,9 @@ const char* kFitHeader =
 
 // The common columns of a fit of a known truth.
 std::string FitColumns(const FitResult& fit, const Model& truth, const Measurement& data) {
-  const double m_true = truth.params()[models::LobedSlots::kExponent];
-  const double m_fit = fit.model.params()[models::LobedSlots::kExponent];
-  const double m_stderr = fit.stderr_values[models::LobedSlots::kExponent];
+  const double m_true = truth.params()[models::SingleLobeSlots::kExponent];
+  const double m_fit = fit.model.params()[models::SingleLobeSlots::kExponent];
+  const double m_stderr = fit.stderr_values[models::SingleLobeSlots::kExponent];
   const fitters::PreparedSamples prepared = fitters::PrepareSamples(data);
   const fitters::LobeResolution lobe =
       fitters::ResolveLobe(truth.Lobe().frame, m_true, prepared.samples);

@@ -1,7 +1,8 @@
 // brdf_albedo_tables OUT.cpp: run by the build. Integrates the lobe albedo table of every
-// microfacet model of the list (microfacet_bound.h) and writes it as a C++ source file whose
-// values are hexadecimal floating-point literals, so that the library compiled from it holds the
-// integrated doubles bit for bit. Not installed; not part of the `brdf` command line.
+// term of the list whose bound is tabulated (kTabulatedBound: the microfacet lobes)
+// (microfacet_bound.h) and writes it as a C++ source file whose values are hexadecimal
+// floating-point literals, so that the library compiled from it holds the integrated doubles bit
+// for bit. Not installed; not part of the `brdf` command line.
 #include <exception>
 #include <iostream>
 #include <string>
@@ -31,9 +32,9 @@ int main(int argc, char** argv) {
   using brdf::fitters::MicrofacetAlbedoTable;
   try {
     std::string tables, lookup;
-    brdf::models::ForEachModel([&](auto model) {
-      using M = decltype(model);
-      if constexpr (M::kFamily == brdf::models::ModelFamily::kMicrofacet) {
+    brdf::models::ForEachTerm([&](auto term) {
+      using M = decltype(term);
+      if constexpr (M::kTabulatedBound) {
         const MicrofacetAlbedoTable table(brdf::FindModel(M::kName));
         const std::string id = Identifier(M::kName);
         tables += "// " + std::string(M::kName) + ": E0 at every node, then E1.\nconst double " +

@@ -13,8 +13,7 @@
 
 #include "core/angles.h"
 #include "core/format.h"
-#include "core/pages.h"
-#include "fitters/parameterization.h"
+#include "core/text.h"
 
 namespace brdf::fitters {
 namespace {
@@ -143,17 +142,21 @@ bool LobeVanished(const FitResult& result) {
   return !(result.model.LobeWeight() >= kVanishedLobeShare).any();
 }
 
+// Whether the lobe's width grows with its parameter (a roughness) or shrinks (an exponent).
+bool WidthIsRoughness(const LobeInfo& lobe) {
+  return lobe.shape_scale == models::ShapeScale::kRoughness;
+}
+
 // "exponent n = 1e4" or "roughness alpha = 0.05": the lobe's width parameter as fitted.
 std::string ShapeText(const Model& model) {
   const ParamInfo& shape = model.info().shape_param();
-  const char* what =
-      model.info().family == models::ModelFamily::kMicrofacet ? "roughness " : "exponent ";
+  const char* what = WidthIsRoughness(model.info().lobes.front()) ? "roughness " : "exponent ";
   return what + shape.name + " = " + Format("%.4g", model.params()[shape.slot]);
 }
 
 void CheckLobeResolution(const std::vector<FitSample>& samples, FitResult* result) {
   const Model& model = result->model;
-  const double exponent = model.info().equivalent_exponent(model.params().data());
+  const double exponent = model.info().EquivalentExponent(model.params().data());
   const LobeFrame frame = model.Lobe().frame;
   const LobeResolution lobe = ResolveLobe(frame, exponent, samples);
   if (lobe.flank_samples > 0) return;
@@ -181,22 +184,26 @@ void CheckIdentifiability(FitResult* result) {
           "exponent is arbitrary; the data show no lobe (try --model lambert)");
       return;  // the exponent's box and error mean nothing without a lobe
     }
-    // The box of the width parameter: an exponent in [1, 1e6], or a roughness alpha in
-    // [1e-3, 1.5] (parameterization.h). Sharper means a larger exponent but a smaller alpha.
-    const bool microfacet = model.info().family == models::ModelFamily::kMicrofacet;
-    const double value = model.params()[model.info().shape_slot];
-    const double sharpest = microfacet ? FitVariables::kMinAlpha : FitVariables::kMaxExponent;
-    const double broadest = microfacet ? FitVariables::kMaxAlpha : FitVariables::kMinExponent;
+    // The box of the width parameter (the lobe's fit range, models/term.h): an exponent in
+    // [1, 1e6], or a roughness alpha in [1e-3, 1.5]. Sharper means a larger exponent but a
+    // smaller alpha.
+    const LobeInfo& lobe = model.info().lobes.front();
+    const bool roughness = WidthIsRoughness(lobe);
+    const double value = model.params()[lobe.shape_slot];
+    const double sharpest = roughness ? lobe.fit_shape_min : lobe.fit_shape_max;
+    const double broadest = roughness ? lobe.fit_shape_max : lobe.fit_shape_min;
     const std::string name = ShapeText(model).substr(0, ShapeText(model).find(" = "));
     auto at = [&](double bound) { return std::abs(value - bound) <= 1e-3 * bound; };
     if (at(sharpest)) {
       result->warnings.push_back("not identifiable: the " + name + " sits at the fitter's " +
-                                 (microfacet ? "lower bound 0.001" : "upper bound 1e6") +
+                                 (roughness ? "lower bound " : "upper bound ") +
+                                 FormatNumber(sharpest, 6) +
                                  "; the data ask for a lobe at least this sharp and cannot say "
                                  "how much sharper");
     } else if (at(broadest)) {
       result->warnings.push_back("not identifiable: the " + name + " sits at the fitter's " +
-                                 (microfacet ? "upper bound 1.5" : "lower bound 1") +
+                                 (roughness ? "upper bound " : "lower bound ") +
+                                 FormatNumber(broadest, 6) +
                                  "; the data ask for a broader lobe than the model has");
     }
   }
@@ -334,8 +341,7 @@ ResidualCheck CheckResiduals(const Model& model, const PreparedSamples& prepared
       },
       [](double a, double b) { return std::max(a, b); });
   // |z| of each channel of each sample, in file order; kNoScore where a channel has none.
-  std::vector<double> scores;
-  AssignPrefaulted(&scores, 3 * usable, kNoScore);  // fresh pages, faulted in from every core
+  std::vector<double> scores(3 * usable, kNoScore);
   const auto score_sample = [&](size_t u) {
     const FitSample& sample = samples[u];
     const Rgb f = model.Eval(sample.wi, sample.wo);

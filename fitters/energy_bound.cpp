@@ -8,16 +8,4 @@ Rgb EnergyBound(const Model& model) {
   });
 }
 
-const char* EnergyBoundFormula(models::ModelFamily family) {
-  switch (family) {
-    case models::ModelFamily::kDiffuse:
-      return "rho_d";
-    case models::ModelFamily::kPowerCosine:
-      return "rho_d + A(m) rho_s";
-    case models::ModelFamily::kMicrofacet:
-      return "rho_d + max over theta of E(theta; alpha, f0)";
-  }
-  return "?";
-}
-
 }  // namespace brdf::fitters

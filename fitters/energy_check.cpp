@@ -16,8 +16,7 @@ void CheckFitEnergy(FitResult* result) {
   result->energy.conserving = curve.conserving();
   result->energy.method = std::string("albedo integrated over ") +
                           std::to_string(curve.points.size()) + " incidence angles (" +
-                          AlbedoMethodName(curve.method) + "); bound " +
-                          EnergyBoundFormula(model.info().family);
+                          AlbedoMethodName(curve.method) + "); bound " + model.info().bound_formula;
   for (int c = 0; c < 3; ++c) {
     if (bound[c] > 0.999) {
       result->warnings.push_back(std::string("energy bound active in channel ") + "rgb"[c] +

@@ -10,6 +10,7 @@
 #include "core/errors.h"
 #include "core/text.h"
 #include "fitters/covariance.h"
+#include "fitters/fit.h"
 
 namespace brdf::fitters {
 namespace {
@@ -25,21 +26,28 @@ constexpr int kFullRefresh = 64;
 constexpr double kSameGeometry = 1e-6;
 
 // The fitter's variables at `model`'s parameters and which of them a fit holds out.
+// The design's fit is the default one (FitOptions: L2 loss, one variable per channel).
 template <typename M>
 struct DesignState {
   FitOptions fit_options;
-  ModelFitter<M> fitter{fit_options};
-  Variables v;
+  std::vector<double> v;
   std::vector<bool> held;
   std::vector<int> free;  // indices of the variables not held
   std::string held_note;
+  // d params / d variables at v.
+  Eigen::MatrixXd gradients;
 
-  explicit DesignState(const Model& model) {
-    ParamsToVariables<M>(model.params().data(), v.d, v.s, v.shape);
-    held = HeldVariables(fitter, v, &held_note);
-    for (int k = 0; k < fitter.FreeVariables(); ++k) {
-      if (!held[k]) free.push_back(k);
+  explicit DesignState(const Model& model) : v(ParamsToVariables<M>(model.params().data())) {
+    held = HeldVariables<M>(fit_options.grey_specular, v, &held_note);
+    for (size_t k = 0; k < v.size(); ++k) {
+      if (!held[k]) free.push_back(static_cast<int>(k));
     }
+    const std::vector<FitSample> none;
+    const FitObjective<M> objective(none, fit_options.loss, fit_options.grey_specular);
+    gradients = ParamGradients<M>(objective.At(v.data()), static_cast<int>(v.size()));
+  }
+  FitObjective<M> Objective(const std::vector<FitSample>& samples) const {
+    return FitObjective<M>(samples, fit_options.loss, fit_options.grey_specular);
   }
 };
 
@@ -72,14 +80,13 @@ template <typename M>
 Eigen::MatrixXd Sensitivities(const DesignState<M>& state, const Model& model,
                               const std::vector<DesignPoint>& points) {
   const std::vector<FitSample> samples = WhitenedSamples(model, points);
-  Variables v = state.v;
-  auto problem = state.fitter.BuildProblem(samples, &v);
+  const FitObjective<M> objective = state.Objective(samples);
   const int m = static_cast<int>(state.free.size());
   Eigen::MatrixXd u(m, 3 * static_cast<Eigen::Index>(points.size()));
-  ForEachJacobianRow(state.fitter, problem.get(), state.v,
-                     [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
-                       for (int i = 0; i < m; ++i) u(i, row) = jacobian[state.free[i]];
-                     });
+  objective.ForEachRow(objective.At(state.v.data()),
+                       [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
+                         for (int i = 0; i < m; ++i) u(i, row) = jacobian[state.free[i]];
+                       });
   return u;
 }
 
@@ -87,7 +94,7 @@ Eigen::MatrixXd Sensitivities(const DesignState<M>& state, const Model& model,
 template <typename M>
 Eigen::MatrixXd CriterionRows(const DesignState<M>& state, const Model& model,
                               const DesignOptions& options) {
-  const Eigen::MatrixXd gradients = ParamGradients(state.fitter, state.v);
+  const Eigen::MatrixXd& gradients = state.gradients;
   std::vector<Eigen::VectorXd> rows;
   const ModelInfo& info = model.info();
   for (const ParamInfo& param : info.params) {
@@ -254,27 +261,29 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement,
       expected[3 * k + c] = std::pow(prepared.samples[k].scale[c] * independent[k][c], 2);
     }
   }
-  Variables v = state.v;
-  auto problem = state.fitter.BuildProblem(prepared.samples, &v);
-  Eigen::MatrixXd a, b, covariance;
-  JacobianSums(state.fitter, problem.get(), state.v, &expected, &a, &b);
+  const FitObjective<M> objective = state.Objective(prepared.samples);
+  const typename FitObjective<M>::Point at = objective.At(state.v.data());
+  NormalSums sums = objective.Sums(at, &expected);
+  sums.Symmetric();
+  Eigen::MatrixXd& a = sums.a;
+  Eigen::MatrixXd& b = sums.b;
+  Eigen::MatrixXd covariance;
   if (noise.common_scale_variance > 0) {
     // Every value times (1 + e): the residuals change by -scale f e, the variables by
     // A^-1 g e with g = sum J^T scale f, which adds var(e) g g^T to B.
     Eigen::VectorXd g = Eigen::VectorXd::Zero(a.rows());
-    ForEachJacobianRow(state.fitter, problem.get(), state.v,
-                       [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
-                         const FitSample& sample = prepared.samples[row / 3];
-                         const int c = static_cast<int>(row % 3);
-                         g += jacobian * (sample.scale[c] * sample.value[c]);
-                       });
+    objective.ForEachRow(at, [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
+      const FitSample& sample = prepared.samples[row / 3];
+      const int c = static_cast<int>(row % 3);
+      g += jacobian * (sample.scale[c] * sample.value[c]);
+    });
     b += noise.common_scale_variance * g * g.transpose();
   }
   PredictedErrors errors;
   errors.note = state.held_note;
   errors.stderr_values.assign(M::kNumParams, std::numeric_limits<double>::quiet_NaN());
   if (SandwichCovariance(a, b, state.held, &covariance, &errors.note)) {
-    errors.stderr_values = ParamStderr(state.fitter, state.v, covariance);
+    errors.stderr_values = ParamStderr<M>(at, covariance);
     errors.available = true;
   }
   return errors;
@@ -317,7 +326,7 @@ std::vector<std::string> DesignWarnings(const Model& model) {
   return VisitModelType(model.name(), [&](auto model_type) {
     using M = decltype(model_type);
     const DesignState<M> state(model);
-    const Eigen::MatrixXd gradients = ParamGradients(state.fitter, state.v);
+    const Eigen::MatrixXd& gradients = state.gradients;
     std::vector<std::string> warnings;
     for (const ParamInfo& param : model.info().params) {
       std::vector<int> channels;
@@ -336,15 +345,19 @@ std::vector<std::string> DesignWarnings(const Model& model) {
                          "): a fit cannot move it, so no reading informs it; the plan pins down "
                          "the other parameters");
     }
-    if constexpr (kHasLobe<M>) {
-      const double shape = model.params()[M::kShape];
-      const double clamped =
-          std::clamp(std::log(shape), ShapeLowerBound<M>(), ShapeUpperBound<M>());
+    for (const LobeInfo& lobe : model.info().lobes) {
+      if (lobe.shape_slot < 0) continue;
+      const double shape = model.params()[lobe.shape_slot];
+      const double lower = std::log(lobe.fit_shape_min), upper = std::log(lobe.fit_shape_max);
+      const double clamped = std::clamp(std::log(shape), lower, upper);
       if (std::abs(std::log(shape) - clamped) > 1e-12 || !(shape > 0)) {
-        warnings.push_back(model.info().shape_param().name + " = " + FormatNumber(shape, 6) +
-                           " lies outside the fit's range [" +
-                           FormatNumber(std::exp(ShapeLowerBound<M>()), 6) + ", " +
-                           FormatNumber(std::exp(ShapeUpperBound<M>()), 6) +
+        std::string name;
+        for (const ParamInfo& param : model.info().params) {
+          if (param.slot == lobe.shape_slot) name = param.name;
+        }
+        warnings.push_back(name + " = " + FormatNumber(shape, 6) +
+                           " lies outside the fit's range [" + FormatNumber(lobe.fit_shape_min, 6) +
+                           ", " + FormatNumber(lobe.fit_shape_max, 6) +
                            "]: planned at the nearest end of it");
       }
     }

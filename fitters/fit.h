@@ -29,7 +29,7 @@ struct FitOptions {
   uint64_t seed = 1;           // of the subsample draw
   int threads = 0;             // 0 = all cores; the result does not depend on it
   int max_iterations = 200;
-  int samples_per_block = 256;  // samples per batch of automatic differentiation
+  int samples_per_block = 256;  // samples per batch of the objective's sums (objective.h)
   // Multi-start: exponents tried from the data-driven guess of rho_d and rho_s; log-spaced
   // over the range real materials span (~1 to ~1e5).
   std::vector<double> start_exponents = {2, 8, 32, 128, 512, 2048, 8192, 32768};
@@ -86,14 +86,6 @@ struct FitResult {
   std::string Summary() const;
 };
 
-// The fitter's free variables (parameterization.h): d[3], s[1 or 3] (s[0] alone when the lobe
-// is grey) and shape[1]; lambert uses d alone.
-struct Variables {
-  double d[3] = {0, 0, 0};
-  double s[3] = {0, 0, 0};
-  double shape[1] = {0};
-};
-
 // A fit's optimum on its stratified subsample (steps 1 and 2 of FitPreparedSamples: the
 // multi-start and the refinement), and the solver iterations spent reaching it. It depends only
 // on the model, the options and Subsample(samples, max_samples, seed), so `--model auto`, whose
@@ -101,7 +93,7 @@ struct Variables {
 // instead of finding it a second time.
 struct SubsampleOptimum {
   bool found = false;
-  Variables variables;
+  std::vector<double> variables;  // the fitter's (parameterization.h)
   int iterations = 0;
 };
 

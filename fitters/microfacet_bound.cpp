@@ -35,12 +35,11 @@ std::pair<double, double> MicrofacetAlbedoTable::IntegrateNode(const ModelInfo& 
   options.tolerance = kTableTolerance;
   options.max_intervals = 400;
   const double alpha = NodeAlpha(j);
-  // The lobe alone (rho_d = 0); the red channel has f0 = 0, the green f0 = 1.
+  // The lobe alone (rho_d = 0); the red channel has its per-channel parameter (f0) at 0, the
+  // green at 1.
   std::vector<double> params(info.num_params, 0.0);
-  for (const ParamInfo& param : info.params) {
-    if (param.name == "f0") params[param.slot + 1] = 1.0;
-  }
-  params[info.shape_slot] = alpha;
+  params[info.lobes.front().first_slot + 1] = 1.0;  // the lobe's per-channel parameter
+  params[info.shape_slot()] = alpha;
   const Model lobe(info, params);
   const Vec3 wo = SphericalDirection(NodeTheta(k, alpha), 0.0);
   const AlbedoEstimate estimate =

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "models/registry.h"
+#include "models/term.h"
 
 namespace brdf::fitters {
 
@@ -45,8 +46,8 @@ double ScalarValue(const ceres::Jet<T, N>& x) {
 
 class MicrofacetAlbedoTable {
  public:
-  static constexpr double kMinAlpha = 1e-3;
-  static constexpr double kMaxAlpha = 1.5;
+  static constexpr double kMinAlpha = models::kMinFitRoughness;
+  static constexpr double kMaxAlpha = models::kMaxFitRoughness;
   static constexpr int kAlphaNodes = 40;
   static constexpr int kUniformThetaNodes = 60;
   static constexpr double kUniformThetaStepDeg = 1.5;
@@ -78,14 +79,8 @@ class MicrofacetAlbedoTable {
   // maximising node is chosen on the values, the derivative is that node's.
   template <typename T>
   T MaxLobeAlbedo(const T& log_alpha, const T& f0) const {
-    const double log_min = std::log(kMinAlpha), log_max = std::log(kMaxAlpha);
-    const double step = (log_max - log_min) / (kAlphaNodes - 1);
-    const double x = (std::clamp(ScalarValue(log_alpha), log_min, log_max) - log_min) / step;
-    const int j = std::clamp(static_cast<int>(std::floor(x)), 0, kAlphaNodes - 2);
-    T t = (log_alpha - T(log_min)) / T(step) - T(j);
-    if (ScalarValue(log_alpha) <= log_min || ScalarValue(log_alpha) >= log_max) {
-      t = T(std::clamp(x - j, 0.0, 1.0));
-    }
+    int j;
+    const T t = AlphaCell(log_alpha, &j);
     const double t_value = ScalarValue(t), f0_value = ScalarValue(f0);
     int best = 0;
     double best_value = -1;
@@ -103,7 +98,48 @@ class MicrofacetAlbedoTable {
     return (e0 + f0 * (e1 - e0)) * T(1 + kRelativeMargin) + T(kAbsoluteMargin);
   }
 
+  // The largest f0 in [0, 1] whose bound (MaxLobeAlbedo) stays within `budget`: a lobe that
+  // follows another in a composition (a clear coat over a base) may take only what the first
+  // left. The bound is linear in f0 at every node, so this is the smallest over the nodes of the
+  // f0 where that node's bound meets the budget. Jet-safe like MaxLobeAlbedo.
+  template <typename T>
+  T MaxF0(const T& log_alpha, const T& budget) const {
+    int j;
+    const T t = AlphaCell(log_alpha, &j);
+    const double t_value = ScalarValue(t);
+    const double target = (ScalarValue(budget) - kAbsoluteMargin) / (1 + kRelativeMargin);
+    int best = -1;
+    double best_f0 = 1.0;
+    for (int k = 0; k < ThetaNodes(); ++k) {
+      const double e0 = Interpolate(&MicrofacetAlbedoTable::E0, j, k, t_value);
+      const double e1 = Interpolate(&MicrofacetAlbedoTable::E1, j, k, t_value);
+      if (e0 >= target) return T(0);  // even f0 = 0 does not fit
+      if (e1 > e0 && (target - e0) / (e1 - e0) < best_f0) {
+        best_f0 = (target - e0) / (e1 - e0);
+        best = k;
+      }
+    }
+    if (best < 0) return T(1);
+    const T e0 = Interpolate(&MicrofacetAlbedoTable::E0, j, best, t);
+    const T e1 = Interpolate(&MicrofacetAlbedoTable::E1, j, best, t);
+    return ((budget - T(kAbsoluteMargin)) / T(1 + kRelativeMargin) - e0) / (e1 - e0);
+  }
+
  private:
+  // The alpha cell [j, j+1] of `log_alpha` and the fraction t within it (clamped to the range).
+  template <typename T>
+  static T AlphaCell(const T& log_alpha, int* j_out) {
+    const double log_min = std::log(kMinAlpha), log_max = std::log(kMaxAlpha);
+    const double step = (log_max - log_min) / (kAlphaNodes - 1);
+    const double x = (std::clamp(ScalarValue(log_alpha), log_min, log_max) - log_min) / step;
+    const int j = std::clamp(static_cast<int>(std::floor(x)), 0, kAlphaNodes - 2);
+    *j_out = j;
+    if (ScalarValue(log_alpha) <= log_min || ScalarValue(log_alpha) >= log_max) {
+      return T(std::clamp(x - j, 0.0, 1.0));
+    }
+    return (log_alpha - T(log_min)) / T(step) - T(j);
+  }
+
   // Catmull-Rom through alpha nodes j-1 .. j+2 (ends repeated) at fraction t of [j, j+1].
   template <typename T>
   T Interpolate(double (MicrofacetAlbedoTable::*at)(int, int) const, int j, int k,

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "core/errors.h"
-#include "fitters/gram_solve.h"
 #include "fitters/model_fitter.h"
+#include "fitters/solve.h"
 
 namespace brdf::fitters {
 
@@ -22,23 +22,27 @@ namespace brdf::fitters {
 // iterations spent to `iterations`. Throws ComputeError when every start fails (a non-finite
 // cost).
 template <typename ModelType>
-Variables BestStart(const ModelFitter<ModelType>& fitter, const std::vector<FitSample>& samples,
-                    bool designed, int* iterations) {
+std::vector<double> BestStart(const ModelFitter<ModelType>& fitter,
+                              const std::vector<FitSample>& samples, bool designed,
+                              int* iterations) {
   const FitOptions& options = fitter.options();
   const std::vector<FitStart> starts = fitter.Starts(designed);
+  const FitObjective<ModelType> objective(samples, options.loss, options.grey_specular,
+                                          options.samples_per_block);
   // The starts are independent: solved side by side (each on Ceres' one thread, its batches in
   // parallel), then compared in their order, so the choice does not depend on the thread count.
-  std::vector<Variables> trials(starts.size());
+  std::vector<std::vector<double>> trials(starts.size());
   std::vector<double> costs(starts.size());
   std::vector<int> start_iterations(starts.size());
   tbb::parallel_for(size_t{0}, starts.size(), [&](size_t k) {
     trials[k] = fitter.InitialGuess(samples, starts[k]);
-    const ceres::Solver::Summary summary = SolveLeastSquares(
-        fitter, samples, &trials[k], std::min(options.start_iterations, options.max_iterations));
+    const ceres::Solver::Summary summary =
+        SolveLeastSquares(objective, &trials[k], fitter.lower(), fitter.upper(),
+                          std::min(options.start_iterations, options.max_iterations));
     start_iterations[k] = static_cast<int>(summary.iterations.size());
     costs[k] = summary.final_cost;
   });
-  Variables best;
+  std::vector<double> best;
   double best_cost = std::numeric_limits<double>::infinity();
   for (size_t k = 0; k < starts.size(); ++k) {
     *iterations += start_iterations[k];

@@ -1,8 +1,5 @@
-// The Ceres residual: a small templated functor over raw parameter arrays, so one definition
-// serves double and ceres::Jet (automatic differentiation), after Ceres' own examples. Each
-// functor holds a batch of samples rather than one: with ~1e6 samples, per-sample overhead
-// would dominate, and batches are what ParallelBatchCost (parallel_cost.h) spreads over threads
-// (docs/fitting.md measures the batch size).
+// A fit's residual as a small templated functor over raw parameter arrays, so one definition
+// serves double and ceres::Jet (automatic differentiation), after Ceres' own examples.
 #pragma once
 
 #include <cmath>
@@ -27,6 +24,9 @@ inline double LossPredictionDerivative(Loss loss, double f, double cos_theta_i) 
   return 1.0;
 }
 
+// The residuals of a batch of samples as a function of the fitter's variables x (one parameter
+// block, parameterization.h), for automatic differentiation: the reference the analytic
+// derivatives of FitObjective (objective.h) are tested against.
 template <typename ModelType>
 class BatchResidual {
  public:
@@ -35,25 +35,10 @@ class BatchResidual {
 
   int num_residuals() const { return 3 * count_; }
 
-  // lambert: one parameter block, d[3].
   template <typename T>
-  bool operator()(const T* d, T* residuals) const {
+  bool operator()(const T* x, T* residuals) const {
     T params[ModelType::kNumParams];
-    VariablesToParams<ModelType, T>(grey_specular_, d, nullptr, nullptr, params);
-    return Residuals(params, residuals);
-  }
-
-  // Lobed models: d[3], s[1 or 3], shape[1] (parameterization.h).
-  template <typename T>
-  bool operator()(const T* d, const T* s, const T* shape, T* residuals) const {
-    T params[ModelType::kNumParams];
-    VariablesToParams<ModelType, T>(grey_specular_, d, s, shape, params);
-    return Residuals(params, residuals);
-  }
-
- private:
-  template <typename T>
-  bool Residuals(const T* params, T* residuals) const {
+    ComputeParams<ModelType, T>(grey_specular_, x, params);
     for (int k = 0; k < count_; ++k) {
       const FitSample& sample = samples_[k];
       // Directions stay plain doubles: only the parameters carry derivatives.
@@ -68,6 +53,7 @@ class BatchResidual {
     return true;
   }
 
+ private:
   bool grey_specular_;
   Loss loss_;
   const FitSample* samples_;

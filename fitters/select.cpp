@@ -16,7 +16,9 @@ namespace brdf::fitters {
 const std::vector<std::string>& AutoCandidates() {
   static const std::vector<std::string> candidates = [] {
     std::vector<std::string> names;
-    for (const ModelInfo& info : ModelRegistry()) names.push_back(info.name);
+    for (const ModelInfo& info : ModelRegistry()) {
+      if (info.auto_candidate) names.push_back(info.name);
+    }
     return names;
   }();
   return candidates;
@@ -93,30 +95,35 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
   selection->chosen = chosen.model.name();
   const CandidateScore& winner = selection->candidates[best];  // its score in the contest
   const CandidateScore* lambert = &selection->candidates.front();
-  // The simplest lobed candidate the chosen one climbed past, for the sentence.
-  const CandidateScore* power_cosine = nullptr;
-  for (const CandidateScore& candidate : selection->candidates) {
-    if (FindModel(candidate.model).family == models::ModelFamily::kPowerCosine &&
-        (power_cosine == nullptr || candidate.bic < power_cosine->bic)) {
-      power_cosine = &candidate;
+  // What the chosen model's first lobe brings, and the best earlier rung whose lobe brings
+  // something else (a power-cosine lobe, for a microfacet one): the sentence compares with it.
+  const ModelInfo& chosen_info = chosen.model.info();
+  const CandidateScore* other = nullptr;
+  if (chosen_info.has_lobe()) {
+    for (size_t k = 0; k < best; ++k) {
+      const ModelInfo& info = FindModel(selection->candidates[k].model);
+      if (info.has_lobe() && info.lobes.front().adds != chosen_info.lobes.front().adds &&
+          (other == nullptr || selection->candidates[k].bic < other->bic)) {
+        other = &selection->candidates[k];
+      }
     }
   }
-  const models::ModelFamily family = chosen.model.info().family;
-  if (family == models::ModelFamily::kDiffuse) {
+  if (!chosen_info.has_lobe()) {
     selection->reason =
         "lambert has the lowest BIC: no lobe lowers the error enough to pay for its extra "
         "variables";
-  } else if (family == models::ModelFamily::kMicrofacet && power_cosine != nullptr) {
+  } else if (other != nullptr) {
     selection->reason = Format(
-        "%s has the lowest BIC (%.6g; best power-cosine lobe, %s, %.6g; lambert %.6g): "
-        "Fresnel and masking lower the rmse from %.4g (%s) to %.4g sr^-1",
-        selection->chosen.c_str(), winner.bic, power_cosine->model.c_str(), power_cosine->bic,
-        lambert->bic, power_cosine->rmse, power_cosine->model.c_str(), winner.rmse);
+        "%s has the lowest BIC (%.6g; best earlier lobe, %s, %.6g; lambert %.6g): "
+        "%s the rmse from %.4g (%s) to %.4g sr^-1",
+        selection->chosen.c_str(), winner.bic, other->model.c_str(), other->bic, lambert->bic,
+        chosen_info.lobes.front().adds.c_str(), other->rmse, other->model.c_str(), winner.rmse);
   } else {
     selection->reason = Format(
-        "%s has the lowest BIC (%.6g, lambert %.6g): the lobe lowers the rmse from "
+        "%s has the lowest BIC (%.6g, lambert %.6g): %s the rmse from "
         "%.4g to %.4g sr^-1",
-        selection->chosen.c_str(), winner.bic, lambert->bic, lambert->rmse, winner.rmse);
+        selection->chosen.c_str(), winner.bic, lambert->bic, chosen_info.lobes.front().adds.c_str(),
+        lambert->rmse, winner.rmse);
   }
   if (on_subsample) {
     selection->reason += " (BIC and rmse of every candidate on the same " +

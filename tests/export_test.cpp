@@ -170,7 +170,7 @@ TEST(Export, MitsubaBeckmannMaskingIsWithinWaltersStatedError) {
   for (double alpha : {0.05, 0.2, 0.5, 1.0}) {
     for (double theta = 1; theta < 89.5; theta += 0.5) {
       const double cos_theta = std::cos(DegToRad(theta));
-      const double exact = 1.0 / (1.0 + models::Beckmann::Lambda<double>(cos_theta, alpha));
+      const double exact = 1.0 / (1.0 + models::BeckmannLobe::Lambda<double>(cos_theta, alpha));
       worst = std::max(worst, std::abs(BeckmannG1Rational(cos_theta, alpha) - exact) / exact);
     }
   }

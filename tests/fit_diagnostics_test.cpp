@@ -43,7 +43,7 @@ TEST(FitDiagnostics, HealthyFitsRaiseNone) {
           << text << " raised '" << prefix << "'" << AllWarnings(fit);
     }
     // The recovered exponent is good to a few percent: the warnings' silence is deserved.
-    EXPECT_NEAR(fit.model.params()[models::LobedSlots::kExponent], 300, 0.03 * 300) << text;
+    EXPECT_NEAR(fit.model.params()[models::Phong::kExponent], 300, 0.03 * 300) << text;
   }
 }
 

@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <random>
-#include <thread>
 
 #include "core/angles.h"
 #include "core/errors.h"
@@ -33,6 +32,9 @@ using models::Ggx;
 template <typename M>
 class MicrofacetModel : public ::testing::Test {};
 using MicrofacetModels = ::testing::Types<Ggx, Beckmann>;
+// The model's lobe term (models/ggx.h, beckmann.h).
+template <typename M>
+using LobeTerm = typename M::template Term<1>;
 TYPED_TEST_SUITE(MicrofacetModel, MicrofacetModels);
 
 // ∫ D(h) cos(theta_h) dω_h = 1: the normal distribution's projected area is the surface's.
@@ -46,12 +48,13 @@ TYPED_TEST(MicrofacetModel, NormalDistributionProjectsToUnitArea) {
     double integral = 0;
     for (int k = 0; k < cells; ++k) {
       const double theta = (k + 0.5) * step;
-      integral += M::D(std::cos(theta), alpha) * std::cos(theta) * std::sin(theta) * step;
+      integral += LobeTerm<M>::D(std::cos(theta), alpha) * std::cos(theta) * std::sin(theta) * step;
     }
     EXPECT_NEAR(2 * kPi * integral, 1.0, 1e-6) << M::kName << " alpha " << alpha;
     // The lobe density the samplers and the quadrature use is the same D cos(theta_h), and its
     // mass-beyond function is its integral: check them against the same midpoint sums.
-    const LobeCoordinates lobe = M::Lobe(std::vector<double>{0, 0, 0, 1, 1, 1, alpha}.data());
+    const LobeCoordinates lobe =
+        FindModel(M::kName).Lobe(std::vector<double>{0, 0, 0, 1, 1, 1, alpha}.data());
     double beyond = 0;
     for (int k = cells - 1; k >= 0; --k) {
       const double theta = (k + 0.5) * step;
@@ -213,8 +216,8 @@ TEST(MicrofacetModelString, ImpossibleValuesAreUsageErrorsNamingTheKey) {
 template <typename M>
 void ExpectRandomParameterizationPointsConserve() {
   std::mt19937 rng(17);
-  std::uniform_real_distribution<double> shape(std::log(fitters::FitVariables::kMinAlpha),
-                                               std::log(fitters::FitVariables::kMaxAlpha));
+  std::uniform_real_distribution<double> shape(std::log(models::kMinFitRoughness),
+                                               std::log(models::kMaxFitRoughness));
   std::uniform_real_distribution<double> logit(-12, 12);
   const ModelInfo& info = FindModel(M::kName);
   LobeQuadratureOptions quadrature;
@@ -238,15 +241,17 @@ void ExpectRandomParameterizationPointsConserve() {
       e1.push_back(estimate.albedo[1]);
     }
     for (int point = 0; point < 50; ++point) {
-      double d[3], s[3], log_alpha_variable[1] = {log_alpha};
+      // The variables d[3], s[3], ln alpha (parameterization.h).
+      double x[7];
       for (int c = 0; c < 3; ++c) {
-        d[c] = logit(rng);
-        s[c] = logit(rng);
+        x[c] = logit(rng);
+        x[3 + c] = logit(rng);
       }
+      x[6] = log_alpha;
       // Push some points against the budget: d large means rho_d takes all the lobe leaves.
-      if (point % 5 == 0) d[0] = d[1] = d[2] = 40;
+      if (point % 5 == 0) x[0] = x[1] = x[2] = 40;
       double params[M::kNumParams];
-      fitters::VariablesToParams<M, double>(false, d, s, log_alpha_variable, params);
+      fitters::ComputeParams<M, double>(false, x, params);
       for (int c = 0; c < 3; ++c) {
         const double rho_d = params[M::kRhoD + c], f0 = params[M::kF0 + c];
         ASSERT_GE(rho_d, 0.0);
@@ -285,10 +290,10 @@ void ExpectBoundIsTight() {
   const ModelInfo& info = FindModel(M::kName);
   for (const auto& [alpha, f0] :
        {std::pair{0.05, 0.04}, std::pair{0.3, 0.04}, std::pair{0.3, 0.9}}) {
-    double d[3] = {40, 40, 40}, s[3], shape[1] = {std::log(alpha)};
-    for (double& value : s) value = fitters::Logit(f0);
+    const double x[7] = {
+        40, 40, 40, fitters::Logit(f0), fitters::Logit(f0), fitters::Logit(f0), std::log(alpha)};
     double params[M::kNumParams];
-    fitters::VariablesToParams<M, double>(false, d, s, shape, params);
+    fitters::ComputeParams<M, double>(false, x, params);
     const Model material(info, std::vector<double>(params, params + M::kNumParams));
     double best = 0;
     for (double theta = 0; theta < 0.5 * kPi; theta += DegToRad(0.25)) {
@@ -433,43 +438,6 @@ TEST(MicrofacetSampling, VisibleNormalImportanceAgreesWithQuadrature) {
           << theta_deg << " channel " << c;
     }
   }
-}
-
-// The parameterization remembers its last call per thread (parameterization.h): calls that
-// alternate between variables differing in one bit, and grey or not, return what a thread that
-// never saw the others computes, bit for bit, parameters and gradients.
-template <typename M>
-void ExpectRememberedParamsAreFresh() {
-  constexpr int kParams = M::kNumParams, kMost = kParams * fitters::FitVariables::kMaxVariables;
-  struct Call {
-    bool grey;
-    double d[3], s[3], shape[1];
-  };
-  Call a{false, {0.3, -1.0, 2.0}, {-2.0, -2.5, -3.0}, {std::log(0.2)}};
-  Call b = a;
-  b.shape[0] = std::nextafter(a.shape[0], 0.0);
-  Call c = a;
-  c.grey = true;
-  const auto compute = [](const Call& call, double* params, double* gradients, double* plain) {
-    fitters::ParamsAndGradients<M>(call.grey, call.d, call.s, call.shape, params, gradients);
-    fitters::VariablesToParams<M, double>(call.grey, call.d, call.s, call.shape, plain);
-  };
-  for (const Call* call : {&a, &b, &a, &c, &a, &a}) {
-    double params[kParams], gradients[kMost] = {}, plain[kParams];
-    compute(*call, params, gradients, plain);
-    double fresh_params[kParams], fresh_gradients[kMost] = {}, fresh_plain[kParams];
-    std::thread([&] { compute(*call, fresh_params, fresh_gradients, fresh_plain); }).join();
-    for (int p = 0; p < kParams; ++p) {
-      EXPECT_EQ(params[p], fresh_params[p]) << M::kName << " param " << p;
-      EXPECT_EQ(plain[p], fresh_plain[p]) << M::kName << " param " << p;
-    }
-    for (int g = 0; g < kMost; ++g) EXPECT_EQ(gradients[g], fresh_gradients[g]) << M::kName << g;
-  }
-}
-
-TEST(MicrofacetBound, RememberedParametersAreThoseComputedAfresh) {
-  ExpectRememberedParamsAreFresh<models::Ggx>();
-  ExpectRememberedParamsAreFresh<models::Beckmann>();
 }
 
 }  // namespace

@@ -17,7 +17,8 @@
 namespace brdf {
 namespace {
 
-using models::LobedSlots;
+// The slots of a one-lobe model (rho_d, rho_s, exponent).
+using LobedSlots = models::Phong;
 
 // Expects ParseModel(text) to throw UsageError whose message contains every one of `parts`.
 void ExpectUsageError(const std::string& text, const std::vector<std::string>& parts) {

@@ -31,13 +31,14 @@ namespace {
 
 using models::BlinnPhong;
 using models::BlinnPhongExact;
-using models::Lambert;
-using models::LobedSlots;
+using Lambert = models::LambertModel;
+// The slots of a one-lobe model (rho_d, rho_s, exponent), as every power-cosine model has them.
+using LobedSlots = models::Phong;
 using models::Phong;
 using testing::RandomUpperDirection;
 
 template <typename M>
-constexpr bool kIsLobed = std::is_base_of_v<LobedSlots, M>;
+constexpr bool kIsLobed = std::is_base_of_v<models::SingleLobeSlots, M>;
 
 // ---------------------------------------------------------------------------------------------
 // Sampling and quadrature helpers.
@@ -301,7 +302,7 @@ std::vector<std::pair<Vec3, Vec3>> OffPeakPairs(int count) {
     const Vec3 wi = RandomUpperDirection(&rng);
     const Vec3 wo = RandomUpperDirection(&rng);
     const double cos_alpha = MirrorDirection(wi).dot(wo);
-    const double cos_theta_h = BlinnPhong::CosThetaHalf(wi, wo);
+    const double cos_theta_h = models::BlinnPhongLobe::CosThetaHalf(wi, wo);
     if (cos_alpha > 0.3 && cos_alpha < 0.99 && cos_theta_h > 0.3 && cos_theta_h < 0.99) {
       pairs.emplace_back(wi, wo);
     }
@@ -605,8 +606,9 @@ TEST(Registry, VisitModelTypeGivesTheMatchingStruct) {
       // The registry names the struct's slots.
       EXPECT_EQ(info.FindParam("rho_d")->slot, M::kRhoD) << info.name;
       if constexpr (kIsLobed<M>) {
-        EXPECT_EQ(info.FindParam("rho_s")->slot, M::kRhoS) << info.name;
+        EXPECT_EQ(info.params[1].slot, M::kRhoS) << info.name;  // rho_s or f0
         EXPECT_EQ(info.params.back().slot, M::kExponent) << info.name;
+        EXPECT_EQ(info.shape_slot(), M::kShape) << info.name;
       }
       // And its evaluator is the struct's.
       const Rgb registry_f = info.eval(defaults.data(), wi, wo);

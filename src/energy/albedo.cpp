@@ -47,7 +47,7 @@ std::string SparseLobeWarning(const Model& model, const AlbedoOptions& options) 
     if (term.coordinates.frame == LobeFrame::kNormal || !(term.scale > 0)) continue;
     // The lobe's half width as a power-cosine exponent (the exponent itself for the power-cosine
     // models; the same half width for a microfacet lobe).
-    const double e = term.model.info().equivalent_exponent(term.model.params().data());
+    const double e = term.model.info().EquivalentExponent(term.model.params().data());
     for (double theta_deg : options.ThetaDegrees()) {
       const double cos_theta = std::cos(DegToRad(theta_deg));
       double probability = 2.0 * cos_theta / (e + 1.0);

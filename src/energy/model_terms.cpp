@@ -14,16 +14,33 @@ double MaxChannel(const std::vector<double>& params, int slot) {
 
 std::vector<AlbedoTerm> AlbedoTerms(const Model& model) {
   const std::vector<double>& params = model.params();
+  const ModelInfo& info = model.info();
   const LobeCoordinates diffuse_coordinates{LobeFrame::kNormal, 1.0};
   // Every model's diffuse term is rho_d/π (slot 0, DESIGN §2).
   const double diffuse_scale = MaxChannel(params, 0);
-  if (!model.info().has_lobe()) return {{"diffuse", model, diffuse_coordinates, diffuse_scale}};
+  if (!info.has_lobe()) return {{"diffuse", model, diffuse_coordinates, diffuse_scale}};
   const Model diffuse(FindModel(models::Lambert::kName), {params[0], params[1], params[2]});
-  std::vector<double> lobe_params = params;
-  std::fill(lobe_params.begin(), lobe_params.begin() + 3, 0.0);
-  return {{"diffuse", diffuse, diffuse_coordinates, diffuse_scale},
-          {"lobe", Model(model.info(), std::move(lobe_params)), model.Lobe(),
-           model.LobeWeight().maxCoeff()}};
+  std::vector<AlbedoTerm> terms = {{"diffuse", diffuse, diffuse_coordinates, diffuse_scale}};
+  for (size_t k = 0; k < info.lobes.size(); ++k) {
+    const LobeInfo& lobe = info.lobes[k];
+    // The lobe alone: the model with rho_d = 0, or with more lobes than one, the lobe's own
+    // composition with lambert (rho_d = 0).
+    const ModelInfo& alone = info.lobes.size() == 1 ? info : FindModel("lambert+" + lobe.term);
+    std::vector<double> lobe_params(alone.num_params, 0.0);
+    const int first = alone.lobes.front().first_slot;
+    const int end = k + 1 < info.lobes.size() ? info.lobes[k + 1].first_slot : info.num_params;
+    if (info.lobes.size() == 1) {
+      lobe_params = params;
+      std::fill(lobe_params.begin(), lobe_params.begin() + 3, 0.0);
+    } else {
+      std::copy(params.begin() + lobe.first_slot, params.begin() + end,
+                lobe_params.begin() + first);
+    }
+    terms.push_back({k == 0 ? "lobe" : "lobe " + std::to_string(k + 1),
+                     Model(alone, std::move(lobe_params)), lobe.coordinates(params.data()),
+                     lobe.weight(params.data()).maxCoeff()});
+  }
+  return terms;
 }
 
 BrdfFunction ModelBrdf(const Model& model) {

@@ -89,7 +89,7 @@ MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSamp
   options.max_samples = 0;
   // Starts around the ggx alpha whose lobe has the fit's half width (Ggx::
   // AlphaEquivalentExponent inverted): the refit follows a known lobe, not unknown data.
-  const double exponent = std::max(fit.info().equivalent_exponent(fit.params().data()), 1.0);
+  const double exponent = std::max(fit.info().EquivalentExponent(fit.params().data()), 1.0);
   const double alpha = std::sqrt(2.0 * std::log(2.0) / ((std::sqrt(2.0) - 1.0) * exponent));
   options.start_alphas = {0.5 * alpha, alpha, 2.0 * alpha};
   const fitters::FitResult refit = fitters::FitPreparedSamples(prepared, "ggx", options);

@@ -30,13 +30,14 @@ enum class Masking {
 };
 
 inline double NormalDistribution(Distribution distribution, double cos_theta_h, double alpha) {
-  return distribution == Distribution::kGgx ? models::Ggx::D<double>(cos_theta_h, alpha)
-                                            : models::Beckmann::D<double>(cos_theta_h, alpha);
+  return distribution == Distribution::kGgx ? models::GgxLobe::D<double>(cos_theta_h, alpha)
+                                            : models::BeckmannLobe::D<double>(cos_theta_h, alpha);
 }
 
 inline double SmithLambda(Distribution distribution, double cos_theta, double alpha) {
-  return distribution == Distribution::kGgx ? models::Ggx::Lambda<double>(cos_theta, alpha)
-                                            : models::Beckmann::Lambda<double>(cos_theta, alpha);
+  return distribution == Distribution::kGgx
+             ? models::GgxLobe::Lambda<double>(cos_theta, alpha)
+             : models::BeckmannLobe::Lambda<double>(cos_theta, alpha);
 }
 
 // Walter et al. 2007, eq. 27, with a = 1 / (alpha tan theta): 1 for a >= 1.6.

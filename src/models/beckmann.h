@@ -1,5 +1,5 @@
-// beckmann: f = rho_d/π + F(wi·h) D(h) G2(wi, wo) / (4 cos theta_i cos theta_o), the microfacet
-// model of microfacet.h with the Beckmann distribution (Beckmann & Spizzichino 1963; Walter et
+// beckmann: the lobe F(wi·h) D(h) G2(wi, wo) / (4 cos theta_i cos theta_o), the microfacet lobe
+// of microfacet.h with the Beckmann distribution (Beckmann & Spizzichino 1963; Walter et
 // al., EGSR 2007, eqs. 25-27):
 //   D(h) = exp(−tan²theta_h / α²) / (π α² cos⁴theta_h),
 //   Λ(w) = (erf(a) − 1)/2 + exp(−a²)/(2a√π),  a = 1/(α tan theta).
@@ -7,7 +7,8 @@
 // over both axes, sqrt(⟨|∇h|²⟩) = s, Beckmann's α equals s (DESIGN §2; the virtual
 // gonioreflectometer's validation, docs/gonio.md).
 //
-// Parameters: rho_d (RGB, default 0.5), f0 (RGB in [0, 1], default 0.04), alpha (default 0.1).
+// The model `beckmann` is lambert+beckmann: f = rho_d/π + the lobe.
+// Parameters: f0 (RGB in [0, 1], default 0.04), alpha (default 0.1); the model adds rho_d.
 // Example: `beckmann:rho_d=0:f0=0.9,0.6,0.3:alpha=0.3`.
 #pragma once
 
@@ -17,10 +18,10 @@
 
 namespace brdf::models {
 
-struct Beckmann : MicrofacetModel<Beckmann> {
+struct BeckmannLobe : MicrofacetLobe<BeckmannLobe> {
   static constexpr const char* kName = "beckmann";
   static constexpr const char* kFormula =
-      "rho_d/pi + F D G2 / (4 cos_i cos_o); D = exp(-tan^2 h/a^2)/(pi a^2 cos^4 h), Schlick F, "
+      "F D G2 / (4 cos_i cos_o); D = exp(-tan^2 h/a^2)/(pi a^2 cos^4 h), Schlick F, "
       "height-correlated Smith G2";
 
   template <typename T, typename Dir>

@@ -1,8 +1,9 @@
-// blinn-phong: f = rho_d/pi + rho_s (m+8)/(8 pi) cos^m(theta_h), theta_h = angle between the
+// blinn-phong: the lobe rho_s (m+8)/(8 pi) cos^m(theta_h), theta_h = angle between the
 // half vector and the normal: the "energy-conserving Blinn-Phong" of real-time rendering
 // (Akenine-Möller, Haines & Hoffman, Real-Time Rendering, 3rd ed., §7.6).
 //
-// Parameters: rho_d (RGB, default 0.5), rho_s (RGB, default 0.04), m (exponent, default 100).
+// The model `blinn-phong` is lambert+blinn-phong: f = rho_d/pi + the lobe.
+// Parameters: rho_s (RGB, default 0.04), m (exponent, default 100); the model adds rho_d.
 // Example: `blinn-phong:rho_d=0.5,0.1,0.1:rho_s=0.04:m=200`.
 //
 // (m+8)/(8 pi) is an approximation. The exact normal-incidence lobe albedo is
@@ -13,34 +14,24 @@
 // about 8 at normal incidence, which `brdf energy` exposes (rho_s = 8 reproduces it).
 #pragma once
 
-#include "models/common.h"
+#include "models/power_cosine.h"
 
 namespace brdf::models {
 
-struct BlinnPhong : LobedSlots {
+struct BlinnPhongLobe : PowerCosineLobe<BlinnPhongLobe> {
   static constexpr const char* kName = "blinn-phong";
-  static constexpr const char* kFormula = "rho_d/pi + rho_s (m+8)/(8pi) cos^m(theta_h)";
-
-  static std::vector<ParamInfo> Params() { return LobedParams("m"); }
+  static constexpr const char* kFormula = "rho_s (m+8)/(8pi) cos^m(theta_h)";
+  static constexpr const char* kExponentName = "m";
   // cos^m(theta_h): a power-cosine lobe of the half vector about the normal.
-  static LobeCoordinates Lobe(const double* params) {
-    return {LobeFrame::kHalfVector, params[kExponent]};
-  }
+  static constexpr LobeFrame kFrame = LobeFrame::kHalfVector;
+
   // Normal-incidence lobe albedo per unit rho_s, A(m) above (templated for Ceres Jets).
   template <typename T>
   static T NormalLobeAlbedo(const T& m) {
     using std::pow;
     return (m + T(8)) * (pow(T(2), -m / T(2)) + m) / ((m + T(2)) * (m + T(4)));
   }
-  static Rgb LobeWeight(const double* params) {
-    return LoadRgb(params, kRhoS) * NormalLobeAlbedo(params[kExponent]);
-  }
-
-  template <typename T, typename D>
-  static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
-    return EvalPowerCosine<BlinnPhong>(params, wi, wo);
-  }
-  // The lobe's cosine, cos(theta_h), and its normalization (m+8)/(8 pi) (EvalPowerCosine).
+  // The lobe's cosine, cos(theta_h), and its normalization (m+8)/(8 pi).
   template <typename D>
   static D LobeCosine(const Vec3T<D>& wi, const Vec3T<D>& wo) {
     return CosThetaHalf(wi, wo);
@@ -62,6 +53,6 @@ struct BlinnPhong : LobedSlots {
 };
 
 // Normal-incidence lobe albedo of blinn-phong per unit rho_s (the closed form above).
-inline double BlinnPhongNormalAlbedo(double m) { return BlinnPhong::NormalLobeAlbedo(m); }
+inline double BlinnPhongNormalAlbedo(double m) { return BlinnPhongLobe::NormalLobeAlbedo(m); }
 
 }  // namespace brdf::models

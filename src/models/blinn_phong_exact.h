@@ -1,6 +1,7 @@
-// blinn-phong-exact: f = rho_d/pi + rho_s (m+2)(m+4) / (8 pi (2^(-m/2) + m)) cos^m(theta_h).
+// blinn-phong-exact: the lobe rho_s (m+2)(m+4) / (8 pi (2^(-m/2) + m)) cos^m(theta_h).
 //
-// Parameters: rho_d (RGB, default 0.5), rho_s (RGB, default 0.04), m (exponent, default 100).
+// The model `blinn-phong-exact` is lambert+blinn-phong-exact: f = rho_d/pi + the lobe.
+// Parameters: rho_s (RGB, default 0.04), m (exponent, default 100); the model adds rho_d.
 // Example: `blinn-phong-exact:rho_d=0.2:rho_s=0.5:m=1000`.
 //
 // Why this factor: at normal incidence h = normalize(n + wo) makes theta_h = theta_o / 2, so
@@ -12,34 +13,25 @@
 #pragma once
 
 #include "models/blinn_phong.h"
-#include "models/common.h"
+#include "models/power_cosine.h"
 
 namespace brdf::models {
 
-struct BlinnPhongExact : LobedSlots {
+struct BlinnPhongExactLobe : PowerCosineLobe<BlinnPhongExactLobe> {
   static constexpr const char* kName = "blinn-phong-exact";
-  static constexpr const char* kFormula =
-      "rho_d/pi + rho_s (m+2)(m+4)/(8pi(2^(-m/2)+m)) cos^m(theta_h)";
+  static constexpr const char* kFormula = "rho_s (m+2)(m+4)/(8pi(2^(-m/2)+m)) cos^m(theta_h)";
+  static constexpr const char* kExponentName = "m";
+  static constexpr LobeFrame kFrame = LobeFrame::kHalfVector;
 
-  static std::vector<ParamInfo> Params() { return LobedParams("m"); }
-  static LobeCoordinates Lobe(const double* params) {
-    return {LobeFrame::kHalfVector, params[kExponent]};
-  }
   // Normal-incidence lobe albedo per unit rho_s: exactly 1 (the factor above is built for it).
   template <typename T>
   static T NormalLobeAlbedo(const T&) {
     return T(1);
   }
-  static Rgb LobeWeight(const double* params) { return LoadRgb(params, kRhoS); }
-
-  template <typename T, typename D>
-  static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
-    return EvalPowerCosine<BlinnPhongExact>(params, wi, wo);
-  }
-  // The lobe's cosine, cos(theta_h), and the normalization above (EvalPowerCosine).
+  // The lobe's cosine, cos(theta_h), and the normalization above.
   template <typename D>
   static D LobeCosine(const Vec3T<D>& wi, const Vec3T<D>& wo) {
-    return BlinnPhong::CosThetaHalf(wi, wo);
+    return BlinnPhongLobe::CosThetaHalf(wi, wo);
   }
   template <typename T>
   static T LobeNormalization(const T& m) {

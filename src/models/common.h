@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -50,39 +48,21 @@ struct ParamInfo {
 
 namespace brdf::models {
 
-// What a fitter and a diagnostic need to know of a model's shape, besides its table:
-//   kDiffuse      no lobe (lambert);
-//   kPowerCosine  rho_d, rho_s, exponent; the lobe albedo per unit rho_s is largest at normal
-//                 incidence (Model::NormalLobeAlbedo);
-//   kMicrofacet   rho_d, f0, alpha; the lobe albedo depends on incidence through Fresnel and
-//                 masking and is tabulated by the fitter (fitters/microfacet_bound.h).
-enum class ModelFamily { kDiffuse, kPowerCosine, kMicrofacet };
-
 // Every model takes a diffuse albedo first. Albedos are not capped at 1 here: a non-conserving
 // material must be expressible so that `brdf energy` can show that it is not conserving.
 inline ParamInfo DiffuseAlbedoParam() {
   return {"rho_d", 0, 3, 0.0, std::numeric_limits<double>::infinity(), 0.5, "diffuse albedo (RGB)"};
 }
 
-// Slot layout of the power-cosine models: rho_d (RGB), rho_s (RGB), exponent; and what they
-// share: the parameter table (only the exponent's name differs), the lobe's weight and the
-// width of the lobe as a power-cosine exponent (the diagnostics' measure).
-struct LobedSlots {
-  static constexpr ModelFamily kFamily = ModelFamily::kPowerCosine;
-  static constexpr int kRhoD = 0;
+// The slots of a composition of a diffuse term and one lobe (composition.h): rho_d (RGB), the
+// lobe's per-channel parameter (rho_s or f0, RGB), its shape (an exponent or alpha). The model
+// names of DESIGN §2's first table (phong, ggx, ...) are such compositions.
+struct SingleLobeSlots {
   static constexpr int kRhoS = 3;
+  static constexpr int kF0 = 3;
   static constexpr int kExponent = 6;
-  static constexpr int kShape = kExponent;
-  static constexpr int kNumParams = 7;
-
-  // Exponents up to 1e6 cover real materials (measured lobes reach ~1e5) with room to spare.
-  static std::vector<ParamInfo> LobedParams(const char* exponent_name) {
-    return {DiffuseAlbedoParam(),
-            {"rho_s", kRhoS, 3, 0.0, std::numeric_limits<double>::infinity(), 0.04,
-             "specular lobe albedo scale (RGB)"},
-            {exponent_name, kExponent, 1, 0.0, 1e6, 100.0, "lobe exponent (larger is sharper)"}};
-  }
-  static double EquivalentExponent(const double* params) { return params[kExponent]; }
+  static constexpr int kAlpha = 6;
+  static constexpr int kShape = 6;
 };
 
 template <typename T>
@@ -110,25 +90,6 @@ inline T ClampedPow(const D& x, const T& e) {
   if (x <= D(0)) return T(0);
   return pow(x, e);
 }
-// The same in doubles, each thread remembering its last results in a small direct-mapped table
-// keyed by the base's bits. Tabulated data repeat their lobe cosines: the 1,096,216 usable cells
-// of a MERL table have 354 distinct half-vector cosines, so a blinn-phong fit's pass over them
-// (at one exponent) calls pow a few hundred times instead of a million (libm's pow was a fifth
-// of such a fit's time). A hit returns what pow returned for those arguments, so the bits are
-// pow's; a base that never repeats costs one hash and one compare more.
-inline double ClampedPow(double x, double e) {
-  if (x <= 0.0) return 0.0;
-  struct Entry {
-    double x = 0.0, e = 0.0, power = 0.0;  // x = 0 matches no positive base
-  };
-  constexpr int kBits = 9;
-  thread_local Entry memo[1 << kBits];
-  uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  Entry& entry = memo[(bits * 0x9e3779b97f4a7c15ull) >> (64 - kBits)];  // Fibonacci hashing
-  if (entry.x != x || entry.e != e) entry = {x, e, std::pow(x, e)};
-  return entry.power;
-}
 // The same in single precision (the preview renderer's, render/material.cpp) as exp(e ln x)
 // through the branch-free polynomials of core/float_math.h, so that a loop over a batch of
 // directions vectorizes (libm's powf, a call, was 15 % of a glossy render). The relative error,
@@ -137,23 +98,6 @@ inline double ClampedPow(double x, double e) {
 inline float ClampedPow(float x, float e) {
   const float power = ExpNonPositive(e * LogPositive(std::max(x, 1.17549435e-38f)));  // FLT_MIN
   return x >= 1.17549435e-38f ? power : 0.0f;
-}
-
-// The power-cosine models' common form, f = rho_d/pi + rho_s N(m) c^m: each model supplies its
-// lobe cosine c(wi, wo) (M::LobeCosine) and normalization N(m) (M::LobeNormalization). One
-// definition for evaluation and for the fitter's analytic derivatives
-// (fitters/analytic_cost.h), which take d f / d m = rho_s (N'(m) + N(m) ln c) c^m from the same
-// pieces.
-template <typename T>
-inline RgbT<T> PowerCosineValue(const T* params, const T& lobe) {
-  return LoadRgb(params, LobedSlots::kRhoD) * T(kInvPi) + LoadRgb(params, LobedSlots::kRhoS) * lobe;
-}
-template <typename M, typename T, typename D>
-inline RgbT<T> EvalPowerCosine(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
-  if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
-  const T& m = params[LobedSlots::kExponent];
-  const T lobe = M::LobeNormalization(m) * ClampedPow(M::LobeCosine(wi, wo), m);
-  return PowerCosineValue(params, lobe);
 }
 
 }  // namespace brdf::models

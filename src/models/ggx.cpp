@@ -4,8 +4,8 @@
 
 namespace brdf::models {
 
-void Ggx::SampleVisibleNormals(const Vec3T<float>& wo, const float* u0, const float* u1, int count,
-                               float* x, float* y, float* z, float alpha) {
+void GgxLobe::SampleVisibleNormals(const Vec3T<float>& wo, const float* u0, const float* u1,
+                                   int count, float* x, float* y, float* z, float alpha) {
   const VisibleNormalFrame<float> frame = VisibleNormalFrameOf(wo, alpha);
   // Into arrays of its own first: x, y, z might alias u0 and u1 as far as the compiler knows.
   constexpr int kChunk = 16;

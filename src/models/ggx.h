@@ -1,11 +1,12 @@
-// ggx: f = rho_d/π + F(wi·h) D(h) G2(wi, wo) / (4 cos theta_i cos theta_o), the microfacet model
-// of microfacet.h with the Trowbridge-Reitz distribution (Trowbridge & Reitz 1975; named GGX by
+// ggx: the lobe F(wi·h) D(h) G2(wi, wo) / (4 cos theta_i cos theta_o), the microfacet lobe of
+// microfacet.h with the Trowbridge-Reitz distribution (Trowbridge & Reitz 1975; named GGX by
 // Walter, Marschner, Li & Torrance, "Microfacet models for refraction through rough surfaces",
 // EGSR 2007):
 //   D(h) = α² / (π (cos²theta_h (α² − 1) + 1)²),
 //   Λ(w) = (−1 + sqrt(1 + α² tan²theta)) / 2.
 //
-// Parameters: rho_d (RGB, default 0.5), f0 (RGB in [0, 1], default 0.04), alpha (default 0.1).
+// The model `ggx` is lambert+ggx: f = rho_d/π + the lobe.
+// Parameters: f0 (RGB in [0, 1], default 0.04), alpha (default 0.1); the model adds rho_d.
 // Example: `ggx:rho_d=0.2,0.05,0.05:f0=0.04:alpha=0.08`.
 //
 // D's tails fall as tan^-4(theta_h), far slower than Beckmann's Gaussian: a glossy coating's
@@ -19,10 +20,10 @@
 
 namespace brdf::models {
 
-struct Ggx : MicrofacetModel<Ggx> {
+struct GgxLobe : MicrofacetLobe<GgxLobe> {
   static constexpr const char* kName = "ggx";
   static constexpr const char* kFormula =
-      "rho_d/pi + F D G2 / (4 cos_i cos_o); D = a^2/(pi (cos^2 h (a^2-1)+1)^2), Schlick F, "
+      "F D G2 / (4 cos_i cos_o); D = a^2/(pi (cos^2 h (a^2-1)+1)^2), Schlick F, "
       "height-correlated Smith G2";
 
   template <typename T, typename Dir>

@@ -1,20 +1,24 @@
-// What the microfacet models of DESIGN §2 share: Fresnel (Schlick's approximation, and the
+// What the microfacet lobes of DESIGN §2 share: Fresnel (Schlick's approximation, and the
 // exact reflectance of a smooth interface that the virtual gonioreflectometer's facets use),
-// the height-correlated Smith masking-shadowing term, and the model template itself:
+// the height-correlated Smith masking-shadowing term, and the lobe template itself:
 //
-//   f(wi, wo) = rho_d/π + F(wi·h) D(h) G2(wi, wo) / (4 cos theta_i cos theta_o)
+//   f(wi, wo) = F(wi·h) D(h) G2(wi, wo) / (4 cos theta_i cos theta_o)
 //
-// with h = normalize(wi + wo). A model (ggx.h, beckmann.h) supplies its normal distribution D,
-// its Smith Λ, its name and the density the samplers draw half vectors from. Everything is
-// templated on the scalar so that one definition serves double and ceres::Jet (STYLE rule 3).
+// with h = normalize(wi + wo), summed with a diffuse term in a composition (composition.h). A
+// lobe (ggx.h, beckmann.h) supplies its normal distribution D, its Smith Λ, its name and the
+// density the samplers draw half vectors from. Everything is templated on the scalar so that
+// one definition serves double and ceres::Jet (STYLE rule 3).
 //
-// Parameters: rho_d (RGB, default 0.5), f0 (RGB, Fresnel reflectance at normal incidence in
-// [0, 1], default 0.04, a dielectric of index 1.5), alpha (roughness, not squared, default 0.1).
+// Parameters: f0 (RGB, Fresnel reflectance at normal incidence in [0, 1], default 0.04, a
+// dielectric of index 1.5), alpha (roughness, not squared, default 0.1).
 #pragma once
 
+#include <ceres/jet.h>
+
+#include <algorithm>
 #include <cmath>
 
-#include "models/common.h"
+#include "models/term.h"
 
 namespace brdf::models {
 
@@ -63,26 +67,42 @@ D TanSquared(const D& cos_theta) {
   return (D(1) - cos2) / cos2;
 }
 
-// The model template. `Model` (the derived struct, CRTP) provides
+// The lobe template. `Derived` (the lobe, CRTP) provides
 //   template <T, D> static T D(const D& cos_theta_h, const T& alpha);    normal distribution
 //   template <T, D> static T Lambda(const D& cos_theta, const T& alpha); Smith Λ
 //   static const LobeDistribution kLobeDistribution;                      D(h) cos(theta_h)
 //   static double AlphaEquivalentExponent(double alpha);  power cosine of the same half width
-template <typename Model>
-struct MicrofacetModel {
-  static constexpr ModelFamily kFamily = ModelFamily::kMicrofacet;
-  static constexpr int kRhoD = 0;
-  static constexpr int kF0 = 3;
-  static constexpr int kAlpha = 6;
-  static constexpr int kShape = kAlpha;
-  static constexpr int kNumParams = 7;
+//
+// Its albedo E(theta; alpha, f0) rises toward grazing with Fresnel, so the energy bound is its
+// largest value over incidence, which the fitter tabulates from Eval (fitters/microfacet_bound.h:
+// the `Bound` of Map, Unmap and Guess). Schlick's F is linear in f0, so E is too.
+template <typename Derived>
+struct MicrofacetLobe {
+  static constexpr bool kDiffuse = false;
+  static constexpr int kF0 = 0;
+  static constexpr int kAlpha = 3;
+  static constexpr int kShapeSlot = kAlpha;
+  static constexpr int kNumParams = 4;
+  static constexpr ShapeScale kShapeScale = ShapeScale::kRoughness;
+  static constexpr const char* kBoundFormula = "max over theta of E(theta; alpha, f0)";
+  // What the lobe brings to a fit, for `auto`'s sentence ("... lower the rmse").
+  static constexpr const char* kAdds = "Fresnel and masking lower";
+  // Whether the energy bound is tabulated by the fitter (fitters/microfacet_bound.h) rather
+  // than closed-form.
+  static constexpr bool kTabulatedBound = true;
+  // Entries of ValueAndGradient's gradient per channel: one per row of the parameter table.
+  static constexpr int kGradientSize = 2;
+  // f0 = 0 still leaves Schlick's rise toward grazing: the lobe never vanishes.
+  static constexpr bool kVanishesAtZero = false;
   // alpha = 0 is a mirror, which no BRDF (a function, not a distribution) can represent.
   static constexpr double kMinAlpha = 1e-4;
   static constexpr double kMaxAlpha = 4.0;
+  // The fitter's range, that of the tabulated bound.
+  static constexpr double kFitShapeMin = kMinFitRoughness;
+  static constexpr double kFitShapeMax = kMaxFitRoughness;
 
   static std::vector<ParamInfo> Params() {
-    return {DiffuseAlbedoParam(),
-            {"f0", kF0, 3, 0.0, 1.0, 0.04, "Fresnel reflectance at normal incidence (RGB)"},
+    return {{"f0", kF0, 3, 0.0, 1.0, 0.04, "Fresnel reflectance at normal incidence (RGB)"},
             {"alpha", kAlpha, 1, kMinAlpha, kMaxAlpha, 0.1,
              "roughness (rms slope for beckmann; larger is broader)"}};
   }
@@ -104,34 +124,63 @@ struct MicrofacetModel {
   // for given angles (the fitter differentiates it with a one-variable Jet).
   template <typename T, typename D>
   static T Specular(const HalfAngles<D>& angles, const T& alpha) {
-    const T distribution = Model::template D<T>(angles.cos_theta_h, alpha);
+    const T distribution = Derived::template D<T>(angles.cos_theta_h, alpha);
     // Height-correlated Smith G2 (Heitz, "Understanding the masking-shadowing function in
     // microfacet-based BRDFs", JCGT 3(2), 2014, eq. 99).
-    const T masking = T(1) / (T(1) + Model::template Lambda<T>(angles.cos_theta_i, alpha) +
-                              Model::template Lambda<T>(angles.cos_theta_o, alpha));
+    const T masking = T(1) / (T(1) + Derived::template Lambda<T>(angles.cos_theta_i, alpha) +
+                              Derived::template Lambda<T>(angles.cos_theta_o, alpha));
     return distribution * masking / T(4 * angles.cos_theta_i * angles.cos_theta_o);
   }
 
+  template <typename T>
+  struct Part {
+    T specular;     // D G2 / (4 cos theta_i cos theta_o)
+    T cos_theta_d;  // Fresnel's angle
+  };
+  template <typename T, typename D>
+  static Part<T> Angular(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
+    const HalfAngles<D> angles = Angles(wi, wo);
+    return {Specular(angles, params[kAlpha]), T(angles.cos_theta_d)};
+  }
+  template <typename T>
+  static RgbT<T> Colour(const T* params, const Part<T>& part) {
+    RgbT<T> f;
+    for (int c = 0; c < 3; ++c)
+      f[c] = SchlickFresnel(part.cos_theta_d, params[kF0 + c]) * part.specular;
+    return f;
+  }
   template <typename T, typename D>
   static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
     if (!AboveHorizon(wi, wo)) return RgbT<T>::Constant(T(0));
     const HalfAngles<D> angles = Angles(wi, wo);
-    return Value(params, Specular(angles, params[kAlpha]), angles.cos_theta_d);
-  }
-  // f from the lobe without Fresnel (Specular) and cos theta_d: Eval's last step, and the
-  // renderer's once a batch's angular parts are known (render/material.cpp).
-  template <typename T, typename D>
-  static RgbT<T> Value(const T* params, const T& specular, const D& cos_theta_d) {
     RgbT<T> f;
-    for (int c = 0; c < 3; ++c) {
-      f[c] =
-          params[kRhoD + c] * T(kInvPi) + SchlickFresnel(cos_theta_d, params[kF0 + c]) * specular;
-    }
+    const T specular = Specular(angles, params[kAlpha]);
+    for (int c = 0; c < 3; ++c)
+      f[c] = SchlickFresnel(angles.cos_theta_d, params[kF0 + c]) * specular;
     return f;
   }
 
+  // F_c = f0_c + (1 - f0_c) w, w = (1 - cos theta_d)^5, S = D G2 / (4 cos theta_i cos theta_o):
+  // d f_c / d f0_c = (1 - w) S and d f_c / d alpha = F_c S', S' by a one-variable Jet (Λ and D
+  // keep their one definition).
+  struct Prepared {};
+  static Prepared Prepare(const double*) { return {}; }
+  static void ValueAndGradient(const double* params, const Prepared&, const Vec3& wi,
+                               const Vec3& wo, Rgb* f, double gradient[3][2]) {
+    using Jet1 = ceres::Jet<double, 1>;
+    const auto angles = Angles(wi, wo);
+    const Jet1 specular = Specular(angles, Jet1(params[kAlpha], 0));
+    const double w = SchlickFresnel(angles.cos_theta_d, 0.0);
+    for (int c = 0; c < 3; ++c) {
+      const double fresnel = SchlickFresnel(angles.cos_theta_d, params[kF0 + c]);
+      (*f)[c] = fresnel * specular.a;
+      gradient[c][0] = (1.0 - w) * specular.a;
+      gradient[c][1] = fresnel * specular.v[0];
+    }
+  }
+
   static LobeCoordinates Lobe(const double* params) {
-    return {LobeFrame::kHalfVector, params[kAlpha], &Model::kLobeDistribution};
+    return {LobeFrame::kHalfVector, params[kAlpha], &Derived::kLobeDistribution};
   }
   // The lobe's weight in an importance mixture: Schlick's F averaged over the cosine-weighted
   // hemisphere, f0 + (1 - f0) ∫ (1-c)^5 2c dc = f0 + (1 - f0)/21.
@@ -140,7 +189,87 @@ struct MicrofacetModel {
     return f0 + (1.0 - f0) / 21.0;
   }
   static double EquivalentExponent(const double* params) {
-    return Model::AlphaEquivalentExponent(params[kAlpha]);
+    return Derived::AlphaEquivalentExponent(params[kAlpha]);
+  }
+  // The largest albedo over incidence per channel, the tabulated bound's.
+  template <typename Bound>
+  static Rgb MaxAlbedo(const double* params, const Bound& bound) {
+    const double log_alpha = std::log(params[kAlpha]);
+    Rgb albedo;
+    for (int c = 0; c < 3; ++c) albedo[c] = bound.MaxAlbedo(log_alpha, params[kF0 + c]);
+    return albedo;
+  }
+
+  // The fitter's variables s[1 or 3] and shape[1] (parameterization.h): alpha = exp(shape),
+  // f0_c = logistic(s_c) (times the largest f0 whose albedo fits the budget, when a lobe before
+  // this one took part of it), and the lobe takes max_theta E(theta; alpha, f0_c) (`bound`:
+  // bound.MaxAlbedo(ln alpha, f0) and bound.MaxF0(ln alpha, budget)).
+  static int NumVariables(bool grey) { return (grey ? 1 : 3) + 1; }
+  static void VariableBounds(bool grey, double* lower, double* upper) {
+    const int s = grey ? 1 : 3;
+    std::fill(lower, lower + s, -kLogisticBound);
+    std::fill(upper, upper + s, kLogisticBound);
+    lower[s] = std::log(kFitShapeMin);
+    upper[s] = std::log(kFitShapeMax);
+  }
+  template <typename T, typename Bound>
+  static void Map(const T* variables, bool grey, const T* budget, T* params, T* taken,
+                  const Bound& bound) {
+    using std::exp;
+    const int s = grey ? 1 : 3;
+    const T& log_alpha = variables[s];
+    for (int c = 0; c < 3; ++c) {
+      T f0 = Logistic(variables[grey ? 0 : c]);
+      // The whole budget (a first lobe's) is 1: f0 is free in (0, 1) and the diffuse term takes
+      // what the lobe leaves.
+      if (budget[c] < T(1)) f0 = f0 * bound.MaxF0(log_alpha, budget[c]);
+      params[kF0 + c] = f0;
+      taken[c] = bound.MaxAlbedo(log_alpha, f0);
+    }
+    params[kAlpha] = exp(log_alpha);
+  }
+  template <typename Bound>
+  static void Unmap(const double* params, bool grey, const double* budget, double* variables,
+                    double* taken, const Bound& bound) {
+    const double log_alpha =
+        std::clamp(std::log(params[kAlpha]), std::log(kFitShapeMin), std::log(kFitShapeMax));
+    double s[3];
+    for (int c = 0; c < 3; ++c) {
+      const double cap = budget[c] < 1 ? bound.MaxF0(log_alpha, budget[c]) : 1.0;
+      s[c] = BoundedLogit(cap > 0 ? params[kF0 + c] / cap : 1.0);
+      taken[c] = bound.MaxAlbedo(log_alpha, cap * Logistic(s[c]));
+    }
+    PackShares(s, log_alpha, grey, variables);
+  }
+  // f0 of the start from the peak (the lobe's own value there with f0 = 0 and f0 = 1, Schlick
+  // being linear in f0), or a dielectric's 0.04: the Fresnel rise toward grazing then has to
+  // come from the data, which keeps a start from mistaking a grazing peak for a metal.
+  template <typename Bound>
+  static void Guess(const PeakSample& peak, const TermStart& start, const double* budget,
+                    const Bound& bound, double* variables, double* taken) {
+    double unit[kNumParams] = {0, 0, 0, start.shape};
+    const double at_zero = Eval<double>(unit, peak.wi, peak.wo)[0];
+    for (int k = 0; k < 3; ++k) unit[kF0 + k] = 1.0;
+    const double at_one = Eval<double>(unit, peak.wi, peak.wo)[0];
+    for (int c = 0; c < 3; ++c) {
+      double f0 = 0.04;
+      const double excess = peak.value[c] - peak.diffuse[c] - at_zero;
+      if (start.from_peak && at_one - at_zero > 1e-12) {
+        f0 = std::clamp(excess / (at_one - at_zero), 0.005, 0.95);
+      }
+      const double cap = budget[c] < 1 ? bound.MaxF0(std::log(start.shape), budget[c]) : 1.0;
+      variables[c] = Logit(std::clamp(f0 / cap, 1e-6, 1 - 1e-6));
+      taken[c] = bound.MaxAlbedo(std::log(start.shape), cap * Logistic(variables[c]));
+    }
+    variables[3] = std::log(start.shape);
+  }
+  static std::vector<TermStart> Starts(const StartShapes& shapes) {
+    std::vector<TermStart> starts;
+    for (double alpha : shapes.Of(kShapeScale)) {
+      starts.push_back({alpha, true});
+      starts.push_back({alpha, false});
+    }
+    return starts;
   }
 };
 

@@ -1,7 +1,8 @@
-// The one list of reflectance models, in the order of DESIGN §2 (the ladder `--model auto`
-// climbs, simplest first). The registry, the model-string parser, the fitter's dispatch,
-// `auto`'s candidates, the albedo integrators and the renderer all take the models from here;
-// adding a model is one header and one entry below.
+// The one list of reflectance models (DESIGN §2): the terms, and the compositions of them that
+// have a name. The registry, the model-string parser, the fitter's dispatch, `auto`'s candidates,
+// the albedo integrators and the renderer all take the models from here. A new term is one header
+// (term.h says what it provides) and one entry in AllTerms; a composition that users can name is
+// one entry below.
 #pragma once
 
 #include <string_view>
@@ -10,38 +11,76 @@
 #include "models/beckmann.h"
 #include "models/blinn_phong.h"
 #include "models/blinn_phong_exact.h"
+#include "models/composition.h"
 #include "models/ggx.h"
 #include "models/lambert.h"
 #include "models/phong.h"
 
 namespace brdf::models {
 
-template <typename... Models>
-struct ModelList {};
+template <typename... Types>
+struct TypeList {};
 
-using AllModels = ModelList<Lambert, Phong, BlinnPhong, BlinnPhongExact, Ggx, Beckmann>;
+// Every term, diffuse terms first.
+using AllTerms =
+    TypeList<Lambert, PhongLobe, BlinnPhongLobe, BlinnPhongExactLobe, GgxLobe, BeckmannLobe>;
 
-// Calls f(M{}) for every model of the list, in order.
-template <typename F, typename... Models>
-void ForEachModel(ModelList<Models...>, F&& f) {
-  (f(Models{}), ...);
+// The named models. kName is what a model string and a report call it (the shorthand of DESIGN
+// §2: `ggx` = lambert+ggx), kAuto whether `--model auto` climbs it, in this order (the ladder,
+// simplest first).
+struct LambertModel : Composition<Lambert> {
+  static constexpr const char* kName = "lambert";
+  static constexpr bool kAuto = true;
+};
+struct Phong : Composition<Lambert, PhongLobe>, SingleLobeSlots {
+  static constexpr const char* kName = "phong";
+  static constexpr bool kAuto = true;
+};
+struct BlinnPhong : Composition<Lambert, BlinnPhongLobe>, SingleLobeSlots {
+  static constexpr const char* kName = "blinn-phong";
+  static constexpr bool kAuto = true;
+};
+struct BlinnPhongExact : Composition<Lambert, BlinnPhongExactLobe>, SingleLobeSlots {
+  static constexpr const char* kName = "blinn-phong-exact";
+  static constexpr bool kAuto = true;
+};
+struct Ggx : Composition<Lambert, GgxLobe>, SingleLobeSlots {
+  static constexpr const char* kName = "ggx";
+  static constexpr bool kAuto = true;
+};
+struct Beckmann : Composition<Lambert, BeckmannLobe>, SingleLobeSlots {
+  static constexpr const char* kName = "beckmann";
+  static constexpr bool kAuto = true;
+};
+
+using AllModels = TypeList<LambertModel, Phong, BlinnPhong, BlinnPhongExact, Ggx, Beckmann>;
+
+// Calls f(M{}) for every type of the list, in order.
+template <typename F, typename... Types>
+void ForEachType(TypeList<Types...>, F&& f) {
+  (f(Types{}), ...);
 }
 template <typename F>
 void ForEachModel(F&& f) {
-  ForEachModel(AllModels{}, std::forward<F>(f));
+  ForEachType(AllModels{}, std::forward<F>(f));
+}
+template <typename F>
+void ForEachTerm(F&& f) {
+  ForEachType(AllTerms{}, std::forward<F>(f));
 }
 
-// Calls visitor(M{}) for the model of the list named `name`; `unknown()` when there is none
-// (it must throw).
+// Calls visitor(M{}) for the model of the list named `name` (its kName or its terms' names,
+// e.g. "ggx" or "lambert+ggx"); `unknown()` when there is none (it must throw).
 template <typename Visitor, typename Unknown, typename First, typename... Rest>
-decltype(auto) VisitModel(ModelList<First, Rest...>, std::string_view name, Visitor&& visitor,
+decltype(auto) VisitModel(TypeList<First, Rest...>, std::string_view name, Visitor&& visitor,
                           Unknown&& unknown) {
+  const bool match = name == First::kName || name == First::TermNames();
   if constexpr (sizeof...(Rest) == 0) {
-    if (name != First::kName) unknown();
+    if (!match) unknown();
     return visitor(First{});
   } else {
-    if (name == First::kName) return visitor(First{});
-    return VisitModel(ModelList<Rest...>{}, name, std::forward<Visitor>(visitor),
+    if (match) return visitor(First{});
+    return VisitModel(TypeList<Rest...>{}, name, std::forward<Visitor>(visitor),
                       std::forward<Unknown>(unknown));
   }
 }

@@ -1,7 +1,8 @@
-// phong: f = rho_d/pi + rho_s (n+2)/(2 pi) cos^n(alpha), alpha = angle between wo and the
+// phong: the lobe rho_s (n+2)/(2 pi) cos^n(alpha), alpha = angle between wo and the
 // mirror direction of wi (the modified Phong model of Lafortune & Willems 1994).
 //
-// Parameters: rho_d (RGB, default 0.5), rho_s (RGB, default 0.04), n (exponent, default 100).
+// The model `phong` is lambert+phong: f = rho_d/pi + the lobe.
+// Parameters: rho_s (RGB, default 0.04), n (exponent, default 100); the model adds rho_d.
 // Example: `phong:rho_d=0.3:rho_s=0.2:n=50`.
 //
 // Why (n+2)/(2 pi): at normal incidence the mirror direction is the normal, alpha = theta_o,
@@ -10,33 +11,25 @@
 // rho_d + rho_s <= 1 is the exact energy condition.
 #pragma once
 
-#include "models/common.h"
+#include "models/power_cosine.h"
 
 namespace brdf::models {
 
-struct Phong : LobedSlots {
+struct PhongLobe : PowerCosineLobe<PhongLobe> {
   static constexpr const char* kName = "phong";
-  static constexpr const char* kFormula = "rho_d/pi + rho_s (n+2)/(2pi) cos^n(alpha)";
-
-  static std::vector<ParamInfo> Params() { return LobedParams("n"); }
+  static constexpr const char* kFormula = "rho_s (n+2)/(2pi) cos^n(alpha)";
+  static constexpr const char* kExponentName = "n";
   // The lobe is a power cosine about the mirror direction, exactly the sampler's density.
-  static LobeCoordinates Lobe(const double* params) {
-    return {LobeFrame::kMirror, params[kExponent]};
-  }
+  static constexpr LobeFrame kFrame = LobeFrame::kMirror;
+
   // Normal-incidence lobe albedo per unit rho_s: 1 by construction (see above), and the
   // largest over incidence.
   template <typename T>
   static T NormalLobeAlbedo(const T&) {
     return T(1);
   }
-  static Rgb LobeWeight(const double* params) { return LoadRgb(params, kRhoS); }
-
-  template <typename T, typename D>
-  static RgbT<T> Eval(const T* params, const Vec3T<D>& wi, const Vec3T<D>& wo) {
-    return EvalPowerCosine<Phong>(params, wi, wo);
-  }
   // The lobe's cosine, cos(alpha) between wo and wi's mirror direction, and its normalization
-  // (n+2)/(2 pi) (EvalPowerCosine).
+  // (n+2)/(2 pi).
   template <typename D>
   static D LobeCosine(const Vec3T<D>& wi, const Vec3T<D>& wo) {
     return MirrorDirection(wi).dot(wo);

@@ -7,27 +7,12 @@
 namespace brdf {
 namespace {
 
-template <typename M>
-ModelInfo MakeInfo() {
-  ModelInfo info;
-  info.name = M::kName;
-  info.formula = M::kFormula;
-  info.num_params = M::kNumParams;
-  info.params = M::Params();
-  info.family = M::kFamily;
-  info.shape_slot = M::kShape;
-  info.eval = [](const double* p, const Vec3& wi, const Vec3& wo) -> Rgb {
-    return M::template Eval<double>(p, wi, wo);
-  };
-  info.lobe = [](const double* p) { return M::Lobe(p); };
-  info.lobe_weight = [](const double* p) { return M::LobeWeight(p); };
-  info.equivalent_exponent = [](const double* p) { return M::EquivalentExponent(p); };
-  return info;
-}
-
 std::vector<ModelInfo> BuildRegistry() {
   std::vector<ModelInfo> registry;
-  models::ForEachModel([&](auto model) { registry.push_back(MakeInfo<decltype(model)>()); });
+  models::ForEachModel([&](auto model) {
+    using M = decltype(model);
+    registry.push_back(MakeModelInfo<M>(M::kName, M::kAuto));
+  });
   return registry;
 }
 
@@ -40,10 +25,23 @@ const ParamInfo* ModelInfo::FindParam(std::string_view param_name) const {
   return nullptr;
 }
 
+LobeCoordinates ModelInfo::Lobe(const double* p) const {
+  if (!has_lobe()) return {LobeFrame::kNormal, 1.0};
+  return lobes.front().coordinates(p);
+}
+
+Rgb ModelInfo::LobeWeight(const double* p) const {
+  return has_lobe() ? lobes.front().weight(p) : Rgb::Zero();
+}
+
+double ModelInfo::EquivalentExponent(const double* p) const {
+  return has_lobe() ? lobes.front().equivalent_exponent(p) : 0.0;
+}
+
 const ParamInfo& ModelInfo::shape_param() const {
   const ParamInfo* found = nullptr;
   for (const ParamInfo& param : params) {
-    if (param.slot == shape_slot) found = &param;
+    if (param.slot == shape_slot()) found = &param;
   }
   if (found == nullptr) throw UsageError("model '" + name + "' has no lobe");
   return *found;
@@ -65,7 +63,7 @@ const std::vector<ModelInfo>& ModelRegistry() {
 const ModelInfo& FindModel(std::string_view name) {
   std::string known;
   for (const ModelInfo& info : ModelRegistry()) {
-    if (info.name == name) return info;
+    if (info.name == name || info.terms == name) return info;
     known += (known.empty() ? "" : ", ") + info.name;
   }
   throw UsageError("unknown model '" + std::string(name) + "' (known: " + known + ")");

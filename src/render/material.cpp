@@ -25,85 +25,54 @@ template <typename M>
 RgbF EvalModelInFloat(const float* params, const Vec3f& wi, const Vec3f& wo) {
   return M::template Eval<float>(params, wi, wo);
 }
-template <typename M>
-void EvalModelBatchInFloat(const float* params, const float* wi_x, const float* wi_y,
-                           const float* wi_z, const Vec3f& wo, int count, RgbF* f) {
-  for (int k = 0; k < count; ++k) {
-    f[k] = M::template Eval<float>(params, Vec3f(wi_x[k], wi_y[k], wi_z[k]), wo);
-  }
-}
 
-// The same for the power-cosine and microfacet models, in two loops: first the part of Eval
-// that depends on the angles alone, with a select where Eval returns early, in a loop that
-// vectorizes (8 lanes where the processor has AVX2, else 4: the same float operations, so the
-// same numbers, as Eval's); then the colours. Power cosines (models/common.h,
-// EvalPowerCosine): the lobe N(m) c^m through ClampedPow's polynomial power. Microfacets
-// (models/microfacet.h, MicrofacetModel::Eval): D G2 / (4 cos theta_i cos theta_o) and
-// cos theta_d, then Schlick's Fresnel.
+// The same for a composition, term by term in two loops: first the part of the term that
+// depends on the angles alone (models/term.h: Angular), in a loop that vectorizes (8 lanes where
+// the processor has AVX2, else 4: the same float operations, so the same numbers, as Eval's);
+// then its colours (Colour), added to the sum where both directions are above the horizon. The
+// power cosines' c^e goes through ClampedPow's polynomial power.
 constexpr int kModelChunk = 16;
-template <typename M>
+template <typename Term>
 BRDF_LANE_FUNCTION void AngularParts(const float* params, const float* wi_x, const float* wi_y,
                                      const float* wi_z, const Vec3f& wo, int n,
-                                     float* __restrict part, float* __restrict cos_theta_d) {
-  if constexpr (M::kFamily == models::ModelFamily::kPowerCosine) {
-    const float exponent = params[models::LobedSlots::kExponent];
-    const float normalization = M::LobeNormalization(exponent);
-    for (int k = 0; k < n; ++k) {
-      const Vec3f wi(wi_x[k], wi_y[k], wi_z[k]);
-      const float lobe = normalization * models::ClampedPow(M::LobeCosine(wi, wo), exponent);
-      part[k] = models::AboveHorizon(wi, wo) ? lobe : 0.0f;
-    }
-  } else {
-    const float alpha = params[M::kAlpha];
-    for (int k = 0; k < n; ++k) {
-      const Vec3f wi(wi_x[k], wi_y[k], wi_z[k]);
-      const auto angles = M::Angles(wi, wo);
-      const float specular = M::Specular(angles, alpha);
-      part[k] = models::AboveHorizon(wi, wo) ? specular : 0.0f;
-      cos_theta_d[k] = angles.cos_theta_d;
-    }
+                                     typename Term::template Part<float>* __restrict parts) {
+  for (int k = 0; k < n; ++k) {
+    parts[k] = Term::template Angular<float, float>(params, Vec3f(wi_x[k], wi_y[k], wi_z[k]), wo);
   }
 }
-template <typename M>
+template <typename Term>
 void AngularPartsBaseline(const float* params, const float* wi_x, const float* wi_y,
-                          const float* wi_z, const Vec3f& wo, int n, float* part,
-                          float* cos_theta_d) {
-  AngularParts<M>(params, wi_x, wi_y, wi_z, wo, n, part, cos_theta_d);
+                          const float* wi_z, const Vec3f& wo, int n,
+                          typename Term::template Part<float>* parts) {
+  AngularParts<Term>(params, wi_x, wi_y, wi_z, wo, n, parts);
 }
-template <typename M>
+template <typename Term>
 BRDF_HDR_AVX2 void AngularPartsAvx2(const float* params, const float* wi_x, const float* wi_y,
-                                    const float* wi_z, const Vec3f& wo, int n, float* part,
-                                    float* cos_theta_d) {
-  AngularParts<M>(params, wi_x, wi_y, wi_z, wo, n, part, cos_theta_d);
+                                    const float* wi_z, const Vec3f& wo, int n,
+                                    typename Term::template Part<float>* parts) {
+  AngularParts<Term>(params, wi_x, wi_y, wi_z, wo, n, parts);
 }
 template <typename M>
-void EvalLobedBatchInFloat(const float* params, const float* wi_x, const float* wi_y,
+void EvalTermsBatchInFloat(const float* params, const float* wi_x, const float* wi_y,
                            const float* wi_z, const Vec3f& wo, int count, RgbF* f) {
-  alignas(32) float part[kModelChunk], cos_theta_d[kModelChunk];
   const bool avx2 = HdrAvx2Enabled();
   for (int first = 0; first < count; first += kModelChunk) {
     const int n = std::min(kModelChunk, count - first);
-    (avx2 ? AngularPartsAvx2<M> : AngularPartsBaseline<M>)(params, wi_x + first, wi_y + first,
-                                                           wi_z + first, wo, n, part, cos_theta_d);
+    bool above[kModelChunk];
     for (int k = 0; k < n; ++k) {
-      RgbF value = RgbF::Zero();
-      if (models::AboveHorizon(Vec3f(wi_x[first + k], wi_y[first + k], wi_z[first + k]), wo)) {
-        if constexpr (M::kFamily == models::ModelFamily::kPowerCosine) {
-          value = models::PowerCosineValue(params, part[k]);
-        } else {
-          value = M::Value(params, part[k], cos_theta_d[k]);
-        }
-      }
-      f[first + k] = value;
+      above[k] = models::AboveHorizon(Vec3f(wi_x[first + k], wi_y[first + k], wi_z[first + k]), wo);
+      f[first + k] = RgbF::Zero();
     }
-  }
-}
-template <typename M>
-FloatModelBatchEval BatchInFloatOf() {
-  if constexpr (M::kFamily == models::ModelFamily::kDiffuse) {
-    return &EvalModelBatchInFloat<M>;
-  } else {
-    return &EvalLobedBatchInFloat<M>;
+    M::ForEachTerm([&](auto term, auto index) {
+      using Term = decltype(term);
+      const float* p = params + M::kOffsets[index];
+      typename Term::template Part<float> parts[kModelChunk];
+      (avx2 ? AngularPartsAvx2<Term> : AngularPartsBaseline<Term>)(p, wi_x + first, wi_y + first,
+                                                                   wi_z + first, wo, n, parts);
+      for (int k = 0; k < n; ++k) {
+        if (above[k]) f[first + k] += Term::Colour(p, parts[k]);
+      }
+    });
   }
 }
 
@@ -118,12 +87,16 @@ class ModelMaterial : public Material {
     // The model knows its own lobe: frame and density (models/lobe.h).
     if (model_.info().has_lobe() && model_.LobeWeight().maxCoeff() > 0.0) lobe_ = model_.Lobe();
     params_float_.assign(model_.params().begin(), model_.params().end());
-    if (model_.info().equivalent_exponent(model_.params().data()) <= kFloatExponentLimit) {
+    double sharpest = 0;
+    for (const LobeInfo& lobe : model_.info().lobes) {
+      sharpest = std::max(sharpest, lobe.equivalent_exponent(model_.params().data()));
+    }
+    if (sharpest <= kFloatExponentLimit) {
       eval_float_ = VisitModelType(model_.name(), [](auto model_type) -> FloatModelEval {
         return &EvalModelInFloat<decltype(model_type)>;
       });
       eval_float_batch_ = VisitModelType(model_.name(), [](auto model_type) -> FloatModelBatchEval {
-        return BatchInFloatOf<decltype(model_type)>();
+        return &EvalTermsBatchInFloat<decltype(model_type)>;
       });
     }
   }

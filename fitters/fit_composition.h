@@ -1,0 +1,148 @@
+// The fit of one model type (a composition, models/composition.h): what FitPreparedSamples runs
+// for the model it is named, and what a caller with a composition of its own (a test of a new
+// term) runs directly. Steps: the multi-start and refinement on a stratified subsample
+// (FitSubsample), then the polish on every sample, standard errors and the information criterion
+// (FitComposition); fit.cpp adds the energy check and the diagnostics (FinishFit).
+#pragma once
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "fitters/covariance.h"
+#include "fitters/fit.h"
+#include "fitters/model_fitter.h"
+#include "fitters/multi_start.h"
+#include "fitters/solve.h"
+
+namespace brdf::fitters {
+
+// Solid-angle-weighted means of the fit metrics over the samples and channels.
+FitMetrics ComputeMetrics(const Model& model, const std::vector<FitSample>& samples);
+// Whether Ceres says the solve converged.
+bool Converged(const ceres::Solver::Summary& summary);
+
+namespace fit_detail {
+// Samples each start of the multi-start is solved on.
+inline constexpr size_t kStartSamples = 4000;
+// Reweighting rounds of the robust fit on the subsample (fit, reweight, refit).
+inline constexpr int kRobustRounds = 4;
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}  // namespace fit_detail
+
+// Steps 1 and 2 of a fit on the stratified subsample `subset` (of a `designed` schedule or
+// not: ModelFitter::Starts): the multi-start and the refinement of its best start
+// (SubsampleOptimum).
+template <typename ModelType>
+SubsampleOptimum FitSubsample(const ModelFitter<ModelType>& fitter,
+                              const std::vector<FitSample>& subset, bool designed) {
+  const FitOptions& options = fitter.options();
+  SubsampleOptimum optimum;
+  optimum.found = true;
+  // 1. Multi-start (multi_start.h) on a smaller subsample, without a robust loss.
+  const std::vector<FitSample> start_subset = Subsample(
+      subset, std::min<size_t>(subset.size(), fit_detail::kStartSamples), options.seed + 1);
+  std::vector<double>& best = optimum.variables;
+  best = BestStart(fitter, start_subset, designed, &optimum.iterations);
+
+  // 2. Refine the best start on the subsample. A robust loss re-estimates its scale from
+  // each round's residuals: the first estimate is inflated by the bias the outliers caused.
+  const auto solve = [&](const std::vector<FitSample>& samples) {
+    const FitObjective<ModelType> objective(samples, options.loss, options.grey_specular,
+                                            options.samples_per_block);
+    optimum.iterations += static_cast<int>(
+        SolveLeastSquares(objective, &best, fitter.lower(), fitter.upper(), options.max_iterations)
+            .iterations.size());
+  };
+  solve(subset);
+  for (int round = 0; options.robust != Robust::kNone && round < fit_detail::kRobustRounds;
+       ++round) {
+    double scale = 0;  // estimated afresh
+    solve(fitter.Reweight(subset, best, &scale));
+  }
+  return optimum;
+}
+
+template <typename ModelType>
+FitResult FitComposition(const ModelInfo& info, const PreparedSamples& prepared,
+                         const FitOptions& options, SubsampleOptimum* given) {
+  const ModelFitter<ModelType> fitter(options);
+  const std::vector<FitSample>& all = prepared.samples;
+  // Subsample keeps every sample of a set no larger than max_samples.
+  const bool subsampled = options.max_samples != 0 && all.size() > options.max_samples;
+  const size_t subset_size = subsampled ? options.max_samples : all.size();
+  SubsampleOptimum optimum;
+  if (given != nullptr && given->found) {
+    optimum = *given;
+  } else {
+    optimum =
+        FitSubsample(fitter, Subsample(all, options.max_samples, options.seed), prepared.designed);
+    if (given != nullptr) *given = optimum;
+  }
+  const std::vector<double>& best = optimum.variables;
+  int iterations = optimum.iterations;
+
+  // 3. Polish on every sample (the final solve, whose convergence is reported), with the
+  // robust weights of the subsample's optimum.
+  std::vector<FitSample> weighted;
+  if (options.robust != Robust::kNone) {
+    double scale = 0;
+    weighted = fitter.Reweight(all, best, &scale);
+  }
+  const std::vector<FitSample>& polish_samples = options.robust == Robust::kNone ? all : weighted;
+  const FitObjective<ModelType> objective(polish_samples, options.loss, options.grey_specular,
+                                          options.samples_per_block);
+  std::vector<double> final_variables = best;
+  const ceres::Solver::Summary summary = SolveLeastSquares(
+      objective, &final_variables, fitter.lower(), fitter.upper(), options.max_iterations);
+  iterations += static_cast<int>(summary.iterations.size());
+
+  std::vector<double> params = fitter.Params(final_variables);
+  bool finite =
+      std::all_of(params.begin(), params.end(), [](double p) { return std::isfinite(p); });
+  if (!finite) {  // never return NaN: fall back to the subsample's optimum
+    final_variables = best;
+    params = fitter.Params(final_variables);
+  }
+
+  FitResult result(Model(info, params));
+  result.loss = options.loss;
+  result.robust = options.robust;
+  result.samples = all.size();
+  result.skipped = prepared.skipped_missing + prepared.skipped_invalid;
+  result.weighting = prepared.weighting;
+  result.converged = finite && Converged(summary);
+  result.iterations = iterations;
+  result.final_cost = summary.final_cost;
+  result.termination = summary.BriefReport();
+  result.free_variables = fitter.FreeVariables();
+  result.metrics = ComputeMetrics(result.model, all);
+  if (subsampled) {
+    result.warnings.push_back("started from a stratified subsample of " +
+                              std::to_string(subset_size) + " samples, then polished on all " +
+                              std::to_string(all.size()));
+  }
+
+  // Standard errors (covariance.h) and the information criterion, from one pass of the sums at
+  // the final variables; the criterion from the plain weighted residuals (the loss's, not the
+  // robust one).
+  const typename FitObjective<ModelType>::Point at = objective.At(final_variables.data());
+  const NormalSums sums = objective.Sums(at);
+  Eigen::MatrixXd covariance;
+  result.stderr_values.assign(params.size(), fit_detail::kNaN);
+  if (VariableCovariance<ModelType>(options.grey_specular, final_variables, sums, &covariance,
+                                    &result.stderr_note)) {
+    result.stderr_values = ParamStderr<ModelType>(at, covariance);
+    result.stderr_available = true;
+  }
+  const double rss = 2 * sums.cost;
+  const double n = 3.0 * static_cast<double>(polish_samples.size());
+  result.bic = n * std::log(std::max(rss, 1e-300) / n) + result.free_variables * std::log(n);
+  return result;
+}
+
+}  // namespace brdf::fitters
