@@ -20,46 +20,6 @@
 #include "fitters/fit_composition.h"
 
 namespace brdf::fitters {
-namespace {
-
-// Samples per chunk of the deterministic sums of the fit metrics.
-constexpr int64_t kMetricsGrain = 4096;
-
-}  // namespace
-
-FitMetrics ComputeMetrics(const Model& model, const std::vector<FitSample>& samples) {
-  struct Sums {
-    double weight = 0, l2 = 0, log = 0, cosine = 0;
-  };
-  const Sums sums = DeterministicReduce(
-      static_cast<int64_t>(samples.size()), kMetricsGrain, Sums{},
-      [&](int64_t begin, int64_t end, Sums partial) {
-        for (int64_t k = begin; k < end; ++k) {
-          const FitSample& sample = samples[k];
-          const Rgb f = model.Eval(sample.wi, sample.wo);
-          const Rgb difference = f - sample.value;
-          const double c = sample.cos_theta_i();
-          const Rgb log_difference = (1.0 + f * c).log() - LossTarget(Loss::kLog, sample.value, c);
-          partial.weight += 3 * sample.weight;
-          partial.l2 += sample.weight * difference.square().sum();
-          partial.log += sample.weight * log_difference.square().sum();
-          partial.cosine += sample.weight * (difference * c).square().sum();
-        }
-        return partial;
-      },
-      [](Sums a, const Sums& b) {
-        a.weight += b.weight;
-        a.l2 += b.l2;
-        a.log += b.log;
-        a.cosine += b.cosine;
-        return a;
-      });
-  FitMetrics metrics;
-  metrics.rmse = std::sqrt(sums.l2 / sums.weight);
-  metrics.log_rmse = std::sqrt(sums.log / sums.weight);
-  metrics.cosine_l2 = std::sqrt(sums.cosine / sums.weight);
-  return metrics;
-}
 
 bool Converged(const ceres::Solver::Summary& summary) {
   return summary.termination_type == ceres::CONVERGENCE ||

@@ -21,8 +21,6 @@
 
 namespace brdf::fitters {
 
-// Solid-angle-weighted means of the fit metrics over the samples and channels.
-FitMetrics ComputeMetrics(const Model& model, const std::vector<FitSample>& samples);
 // Whether Ceres says the solve converged.
 bool Converged(const ceres::Solver::Summary& summary);
 
@@ -32,7 +30,49 @@ inline constexpr size_t kStartSamples = 4000;
 // Reweighting rounds of the robust fit on the subsample (fit, reweight, refit).
 inline constexpr int kRobustRounds = 4;
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Samples per chunk of the deterministic sums of the fit metrics.
+inline constexpr int64_t kMetricsGrain = 4096;
 }  // namespace fit_detail
+
+// Solid-angle-weighted means of the fit metrics over the objective's samples and channels, with
+// the model's values from the objective at `at`.
+template <typename M>
+FitMetrics ComputeMetrics(const FitObjective<M>& objective,
+                          const typename FitObjective<M>::Point& at) {
+  const std::vector<FitSample>& samples = objective.samples();
+  struct Sums {
+    double weight = 0, l2 = 0, log = 0, cosine = 0;
+  };
+  const Sums sums = DeterministicReduce(
+      static_cast<int64_t>(samples.size()), fit_detail::kMetricsGrain, Sums{},
+      [&](int64_t begin, int64_t end, Sums partial) {
+        const auto prepared = objective.Prepare(at);
+        for (int64_t k = begin; k < end; ++k) {
+          const FitSample& sample = samples[k];
+          const Rgb f = objective.Value(at, prepared, k);
+          const Rgb difference = f - sample.value;
+          const double c = sample.cos_theta_i();
+          const Rgb log_difference = (1.0 + f * c).log() - LossTarget(Loss::kLog, sample.value, c);
+          partial.weight += 3 * sample.weight;
+          partial.l2 += sample.weight * difference.square().sum();
+          partial.log += sample.weight * log_difference.square().sum();
+          partial.cosine += sample.weight * (difference * c).square().sum();
+        }
+        return partial;
+      },
+      [](Sums a, const Sums& b) {
+        a.weight += b.weight;
+        a.l2 += b.l2;
+        a.log += b.log;
+        a.cosine += b.cosine;
+        return a;
+      });
+  FitMetrics metrics;
+  metrics.rmse = std::sqrt(sums.l2 / sums.weight);
+  metrics.log_rmse = std::sqrt(sums.log / sums.weight);
+  metrics.cosine_l2 = std::sqrt(sums.cosine / sums.weight);
+  return metrics;
+}
 
 // Steps 1 and 2 of a fit on the stratified subsample `subset` (of a `designed` schedule or
 // not: ModelFitter::Starts): the multi-start and the refinement of its best start
@@ -97,8 +137,11 @@ FitResult FitComposition(const ModelInfo& info, const PreparedSamples& prepared,
   const FitObjective<ModelType> objective(polish_samples, options.loss, options.grey_specular,
                                           options.samples_per_block);
   std::vector<double> final_variables = best;
-  const ceres::Solver::Summary summary = SolveLeastSquares(
-      objective, &final_variables, fitter.lower(), fitter.upper(), options.max_iterations);
+  NormalSums sums;
+  bool have_sums = false;
+  const ceres::Solver::Summary summary =
+      SolveLeastSquares(objective, &final_variables, fitter.lower(), fitter.upper(),
+                        options.max_iterations, &sums, &have_sums);
   iterations += static_cast<int>(summary.iterations.size());
 
   std::vector<double> params = fitter.Params(final_variables);
@@ -107,6 +150,7 @@ FitResult FitComposition(const ModelInfo& info, const PreparedSamples& prepared,
   if (!finite) {  // never return NaN: fall back to the subsample's optimum
     final_variables = best;
     params = fitter.Params(final_variables);
+    have_sums = false;
   }
 
   FitResult result(Model(info, params));
@@ -120,7 +164,8 @@ FitResult FitComposition(const ModelInfo& info, const PreparedSamples& prepared,
   result.final_cost = summary.final_cost;
   result.termination = summary.BriefReport();
   result.free_variables = fitter.FreeVariables();
-  result.metrics = ComputeMetrics(result.model, all);
+  const typename FitObjective<ModelType>::Point at = objective.At(final_variables.data());
+  result.metrics = ComputeMetrics(objective, at);
   if (subsampled) {
     result.warnings.push_back("started from a stratified subsample of " +
                               std::to_string(subset_size) + " samples, then polished on all " +
@@ -130,8 +175,7 @@ FitResult FitComposition(const ModelInfo& info, const PreparedSamples& prepared,
   // Standard errors (covariance.h) and the information criterion, from one pass of the sums at
   // the final variables; the criterion from the plain weighted residuals (the loss's, not the
   // robust one).
-  const typename FitObjective<ModelType>::Point at = objective.At(final_variables.data());
-  const NormalSums sums = objective.Sums(at);
+  if (!have_sums) sums = objective.Sums(at);
   Eigen::MatrixXd covariance;
   result.stderr_values.assign(params.size(), fit_detail::kNaN);
   if (VariableCovariance<ModelType>(options.grey_specular, final_variables, sums, &covariance,

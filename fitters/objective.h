@@ -7,7 +7,9 @@
 //   d r / d x = d r / d params * d params / d x.
 // The second factor G (parameterization.h, Jets) is computed once per point (At) and handed to
 // every batch; the first comes per sample from each term's ValueAndGradient (models/term.h) in
-// closed form. For r_c = (P(f_c) - t_c) s_c, with P the loss's prediction (LossPrediction),
+// closed form, from what the term takes of the sample's directions (its Geometry), computed once
+// when the objective is made. For r_c = (P(f_c) - t_c) s_c, with P the loss's prediction
+// (LossPrediction),
 //   d r_c / d params = s_c P'(f_c) d f_c / d params,
 // and f_c depends only on the parameters of channel c (an RGB parameter's channel c, and the
 // shapes): u_c, one entry per row of the model's parameter table. Each batch adds up u_c u_c^T per
@@ -64,7 +66,21 @@ class FitObjective {
         loss_(loss),
         grey_specular_(grey_specular),
         batch_(std::max(batch_size, 1)),
-        n_(VariableLayout<M>::Count(grey_specular)) {
+        n_(VariableLayout<M>::Count(grey_specular)),
+        geometry_(samples.size()) {
+    // What each term takes of a sample's directions, once (models/term.h: GeometryOf).
+    DeterministicReduce(
+        static_cast<int64_t>(samples.size()), 4096, 0,
+        [&](int64_t begin, int64_t end, int) {
+          for (int64_t k = begin; k < end; ++k) {
+            M::ForEachTerm([&](auto term, auto index) {
+              std::get<decltype(index)::value>(geometry_[k]) =
+                  decltype(term)::GeometryOf(samples[k].wi, samples[k].wo);
+            });
+          }
+          return 0;
+        },
+        [](int, int) { return 0; });
     const std::vector<ParamInfo> table = M::Params();
     for (int c = 0; c < 3; ++c) {
       for (int row = 0; row < kRows; ++row) {
@@ -96,6 +112,7 @@ class FitObjective {
     return DeterministicReduce(
         BatchCount(), kBatchesPerChunk, 0.0,
         [&](int64_t begin, int64_t end, double partial) {
+          const Prepared prepared = Prepare(at);
           double residuals[3 * kMaxStackBatch];
           for (int64_t b = begin; b < end; ++b) {
             const size_t first = static_cast<size_t>(b) * batch_;
@@ -106,7 +123,7 @@ class FitObjective {
               heap.resize(3 * static_cast<size_t>(count));
               rows = heap.data();
             }
-            for (int k = 0; k < count; ++k) Residuals(at, samples_[first + k], rows + 3 * k);
+            for (int k = 0; k < count; ++k) Residuals(at, prepared, first + k, rows + 3 * k);
             partial += 0.5 * Eigen::Map<const Eigen::VectorXd>(rows, 3 * count).squaredNorm();
           }
           return partial;
@@ -120,9 +137,10 @@ class FitObjective {
     DeterministicReduce(
         static_cast<int64_t>(samples_.size()), 4096, 0,
         [&](int64_t begin, int64_t end, int) {
+          const Prepared prepared = Prepare(at);
           for (int64_t k = begin; k < end; ++k) {
             double r[3];
-            Residuals(at, samples_[k], r);
+            Residuals(at, prepared, k, r);
             squared[k] = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
           }
           return 0;
@@ -156,6 +174,30 @@ class FitObjective {
         });
   }
 
+  // What every sample's evaluation of each term shares at a point (models/term.h: Prepare).
+  using Prepared = typename M::Prepared;
+  static Prepared Prepare(const Point& at) {
+    Prepared prepared;
+    M::ForEachTerm([&](auto term, auto index) {
+      std::get<decltype(index)::value>(prepared) =
+          decltype(term)::Prepare(at.params.data() + M::kOffsets[index]);
+    });
+    return prepared;
+  }
+
+  // The model's value f at sample k, from the terms' values at `at`.
+  Rgb Value(const Point& at, const Prepared& prepared, size_t k) const {
+    Rgb f = Rgb::Zero();
+    if (models::AboveHorizon(samples_[k].wi, samples_[k].wo)) {
+      M::ForEachTerm([&](auto term, auto index) {
+        constexpr int kIndex = decltype(index)::value;
+        f += decltype(term)::Value(at.params.data() + M::kOffsets[index],
+                                   std::get<kIndex>(prepared), std::get<kIndex>(geometry_[k]));
+      });
+    }
+    return f;
+  }
+
   // Calls visit(row, jacobian_row, residual) for every residual row at `at`, in order (sample
   // k's channel c is row 3 k + c); jacobian_row holds n values.
   template <typename Visit>
@@ -163,7 +205,7 @@ class FitObjective {
     Eigen::VectorXd row(n_);
     const Prepared prepared = Prepare(at);
     for (size_t k = 0; k < samples_.size(); ++k) {
-      VisitSample(at, prepared, samples_[k], [&](int c, double residual, const double* u) {
+      VisitSample(at, prepared, k, [&](int c, double residual, const double* u) {
         for (int i = 0; i < n_; ++i) {
           double sum = 0;
           for (int p = 0; p < kRows; ++p) sum += u[p] * G(at, c, p)[i];
@@ -191,20 +233,10 @@ class FitObjective {
     return at.gradients.data() + static_cast<size_t>(channel_slots_[c][p]) * n_;
   }
 
-  // What every sample's evaluation of each term shares at a point (models/term.h: Prepare).
-  using Prepared = typename M::Prepared;
-  static Prepared Prepare(const Point& at) {
-    Prepared prepared;
-    M::ForEachTerm([&](auto term, auto index) {
-      std::get<decltype(index)::value>(prepared) =
-          decltype(term)::Prepare(at.params.data() + M::kOffsets[index]);
-    });
-    return prepared;
-  }
-
-  // The residual of each channel of `sample` at `at`, through the model's Eval.
-  void Residuals(const Point& at, const FitSample& sample, double* r) const {
-    const Rgb f = M::template Eval<double>(at.params.data(), sample.wi, sample.wo);
+  // The residual of each channel of sample k at `at`, from the terms' values.
+  void Residuals(const Point& at, const Prepared& prepared, size_t k, double* r) const {
+    const FitSample& sample = samples_[k];
+    const Rgb f = Value(at, prepared, k);
     const double cos_theta_i = sample.cos_theta_i();
     const Rgb target = LossTarget(loss_, sample.value, cos_theta_i);
     for (int c = 0; c < 3; ++c) {
@@ -215,8 +247,9 @@ class FitObjective {
   // Calls visit(c, residual, u) for each channel of `sample`, u = d residual / d (the table's
   // parameters of channel c).
   template <typename Visit>
-  void VisitSample(const Point& at, const Prepared& prepared, const FitSample& sample,
+  void VisitSample(const Point& at, const Prepared& prepared, size_t sample_index,
                    Visit&& visit) const {
+    const FitSample& sample = samples_[sample_index];
     Rgb f = Rgb::Zero();
     double df[3][kRows] = {};
     const bool above = models::AboveHorizon(sample.wi, sample.wo);
@@ -227,8 +260,9 @@ class FitObjective {
         const double* p = at.params.data() + M::kOffsets[index];
         Rgb term_f;
         double term_gradient[3][Term::kGradientSize];
-        Term::ValueAndGradient(p, std::get<decltype(index)::value>(prepared), sample.wi, sample.wo,
-                               &term_f, term_gradient);
+        constexpr int kIndex = decltype(index)::value;
+        Term::ValueAndGradient(p, std::get<kIndex>(prepared),
+                               std::get<kIndex>(geometry_[sample_index]), &term_f, term_gradient);
         f += term_f;
         for (int c = 0; c < 3; ++c) {
           for (int k = 0; k < Term::kGradientSize; ++k) df[c][column + k] = term_gradient[c][k];
@@ -258,7 +292,7 @@ class FitObjective {
     double half_squared = 0;
     const Prepared prepared = Prepare(at);
     for (int k = 0; k < count; ++k) {
-      VisitSample(at, prepared, samples_[first + k], [&](int c, double residual, const double* u) {
+      VisitSample(at, prepared, first + k, [&](int c, double residual, const double* u) {
         const int row = 3 * k + c;
         const double e = expected != nullptr ? expected[row] : residual * residual;
         int slot = 0;
@@ -314,6 +348,7 @@ class FitObjective {
   bool grey_specular_;
   size_t batch_;
   int n_;
+  std::vector<typename M::Geometry> geometry_;  // one per sample
   int channel_slots_[3][kRows];
 };
 

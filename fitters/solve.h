@@ -72,9 +72,10 @@ class PointEvaluation final : public ceres::EvaluationCallback {
     if (evaluate_jacobians ? have_w_ : have_cost_) return;
     const typename FitObjective<M>::Point at = objective_.At(x_);
     if (evaluate_jacobians) {
-      const NormalSums sums = objective_.Sums(at);
-      ok_ = GramFactor(sums, &w_);
-      cost_ = sums.cost;
+      sums_ = objective_.Sums(at);
+      sums_point_.assign(x_, x_ + objective_.NumVariables());
+      ok_ = GramFactor(sums_, &w_);
+      cost_ = sums_.cost;
       have_w_ = true;
     } else {
       cost_ = objective_.HalfSquaredSum(at);
@@ -87,6 +88,9 @@ class PointEvaluation final : public ceres::EvaluationCallback {
   double cost() const { return cost_; }
   bool has_w() const { return have_w_; }
   const Eigen::MatrixXd& w() const { return w_; }
+  // The normal sums of the last Jacobian evaluation and the point it was at.
+  const NormalSums& sums() const { return sums_; }
+  const std::vector<double>& sums_point() const { return sums_point_; }
 
  private:
   const FitObjective<M>& objective_;
@@ -94,6 +98,8 @@ class PointEvaluation final : public ceres::EvaluationCallback {
   bool have_cost_ = false, have_w_ = false, ok_ = false;
   double cost_ = 0;
   Eigen::MatrixXd w_;
+  NormalSums sums_;
+  std::vector<double> sums_point_;
 };
 
 // The n + 1 stand-in residuals of the header, read from the point's evaluation.
@@ -127,11 +133,17 @@ class GramCost final : public ceres::CostFunction {
   int n_;
 };
 
-// Minimizes the objective from `x` (updated in place) within the box [lower, upper].
+// Minimizes the objective from `x` (updated in place) within the box [lower, upper]. When
+// `sums_at_end` is given and the solve's last Jacobian evaluation was at the final `x` (Ceres
+// ends after a step it has linearized at, unless a tolerance stops it at a trial point), it
+// receives the normal sums there and `*have_sums` is set: the standard errors at the optimum
+// then need no pass of their own.
 template <typename M>
 ceres::Solver::Summary SolveLeastSquares(const FitObjective<M>& objective, std::vector<double>* x,
                                          const std::vector<double>& lower,
-                                         const std::vector<double>& upper, int max_iterations) {
+                                         const std::vector<double>& upper, int max_iterations,
+                                         NormalSums* sums_at_end = nullptr,
+                                         bool* have_sums = nullptr) {
   const int n = objective.NumVariables();
   PointEvaluation<M> evaluation(objective, x->data());
   ceres::Problem::Options problem_options;
@@ -154,6 +166,10 @@ ceres::Solver::Summary SolveLeastSquares(const FitObjective<M>& objective, std::
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
+  if (sums_at_end != nullptr) {
+    *have_sums = evaluation.has_w() && evaluation.sums_point() == *x;
+    if (*have_sums) *sums_at_end = evaluation.sums();
+  }
   return summary;
 }
 

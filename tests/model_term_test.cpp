@@ -70,9 +70,19 @@ struct BackscatterLobe {
   }
   struct Prepared {};
   static Prepared Prepare(const double*) { return {}; }
-  static void ValueAndGradient(const double* params, const Prepared&, const Vec3& wi,
-                               const Vec3& wo, Rgb* f, double gradient[3][2]) {
-    const double n = params[kExponent], cosine = wi.dot(wo);
+  struct Geometry {
+    double cosine;
+  };
+  static Geometry GeometryOf(const Vec3& wi, const Vec3& wo) { return {wi.dot(wo)}; }
+  static Rgb Value(const double* params, const Prepared& prepared, const Geometry& geometry) {
+    Rgb f;
+    double gradient[3][2];
+    ValueAndGradient(params, prepared, geometry, &f, gradient);
+    return f;
+  }
+  static void ValueAndGradient(const double* params, const Prepared&, const Geometry& geometry,
+                               Rgb* f, double gradient[3][2]) {
+    const double n = params[kExponent], cosine = geometry.cosine;
     const double power = models::ClampedPow(cosine, n);
     const double lobe = (n + 2) * 0.5 * kInvPi * power;
     const double slope = cosine > 0 ? 0.5 * kInvPi * power + lobe * std::log(cosine) : 0.0;

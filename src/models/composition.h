@@ -27,6 +27,8 @@ struct Composition {
   using DiffuseTerm = Diffuse;
   // What each term's ValueAndGradient shares at one point of the parameters (term.h).
   using Prepared = std::tuple<typename Diffuse::Prepared, typename Lobes::Prepared...>;
+  // What each term's ValueAndGradient takes of a sample's directions (term.h).
+  using Geometry = std::tuple<typename Diffuse::Geometry, typename Lobes::Geometry...>;
   static constexpr int kRhoD = 0;  // the diffuse term's albedo, every model's first parameter
   static constexpr int kLobes = sizeof...(Lobes);
   static constexpr int kTerms = 1 + kLobes;

@@ -59,8 +59,13 @@ struct Lambert {
   }
   struct Prepared {};
   static Prepared Prepare(const double*) { return {}; }
-  static void ValueAndGradient(const double* params, const Prepared&, const Vec3&, const Vec3&,
-                               Rgb* f, double gradient[3][1]) {
+  struct Geometry {};
+  static Geometry GeometryOf(const Vec3&, const Vec3&) { return {}; }
+  static Rgb Value(const double* params, const Prepared&, const Geometry&) {
+    return LoadRgb(params, kRhoD) * kInvPi;
+  }
+  static void ValueAndGradient(const double* params, const Prepared&, const Geometry&, Rgb* f,
+                               double gradient[3][1]) {
     for (int c = 0; c < 3; ++c) {
       (*f)[c] = params[kRhoD + c] * kInvPi;
       gradient[c][0] = kInvPi;

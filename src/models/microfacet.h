@@ -163,12 +163,21 @@ struct MicrofacetLobe {
   // F_c = f0_c + (1 - f0_c) w, w = (1 - cos theta_d)^5, S = D G2 / (4 cos theta_i cos theta_o):
   // d f_c / d f0_c = (1 - w) S and d f_c / d alpha = F_c S', S' by a one-variable Jet (Λ and D
   // keep their one definition).
+  // The sample's angles depend on the directions alone (Geometry).
   struct Prepared {};
   static Prepared Prepare(const double*) { return {}; }
-  static void ValueAndGradient(const double* params, const Prepared&, const Vec3& wi,
-                               const Vec3& wo, Rgb* f, double gradient[3][2]) {
+  using Geometry = HalfAngles<double>;
+  static Geometry GeometryOf(const Vec3& wi, const Vec3& wo) { return Angles(wi, wo); }
+  static Rgb Value(const double* params, const Prepared&, const Geometry& angles) {
+    const double specular = Specular(angles, params[kAlpha]);
+    Rgb f;
+    for (int c = 0; c < 3; ++c)
+      f[c] = SchlickFresnel(angles.cos_theta_d, params[kF0 + c]) * specular;
+    return f;
+  }
+  static void ValueAndGradient(const double* params, const Prepared&, const Geometry& angles,
+                               Rgb* f, double gradient[3][2]) {
     using Jet1 = ceres::Jet<double, 1>;
-    const auto angles = Angles(wi, wo);
     const Jet1 specular = Specular(angles, Jet1(params[kAlpha], 0));
     const double w = SchlickFresnel(angles.cos_theta_d, 0.0);
     for (int c = 0; c < 3; ++c) {

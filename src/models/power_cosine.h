@@ -76,21 +76,35 @@ struct PowerCosineLobe {
 
   // d f_c / d rho_s_c = L and d f_c / d e = rho_s_c (N'(e) c^e + L ln c), L = N(e) c^e, since
   // d c^e / d e = c^e ln c (c > 0; L = 0 and so its derivative for c <= 0). N and N' are the
-  // batch's (one Jet).
+  // point's (one Jet, Prepare); ln c is the sample's (Geometry: it depends on the directions
+  // alone), so c^e = exp(e ln c) costs one exp where pow(c, e) cost a logarithm and an exp.
   struct Prepared {
     ceres::Jet<double, 1> normalization{0.0};
   };
   static Prepared Prepare(const double* params) {
     return {Derived::LobeNormalization(ceres::Jet<double, 1>(params[kExponent], 0))};
   }
-  static void ValueAndGradient(const double* params, const Prepared& prepared, const Vec3& wi,
-                               const Vec3& wo, Rgb* f, double gradient[3][2]) {
-    const double e = params[kExponent];
+  struct Geometry {
+    double log_cosine;  // ln c; -infinity for c <= 0 (no lobe)
+  };
+  static Geometry GeometryOf(const Vec3& wi, const Vec3& wo) {
     const double cosine = Derived::LobeCosine(wi, wo);
-    const double power = ClampedPow(cosine, e);
+    return {cosine > 0 ? std::log(cosine) : -std::numeric_limits<double>::infinity()};
+  }
+  static double Power(const double* params, const Geometry& geometry) {
+    return geometry.log_cosine > -std::numeric_limits<double>::infinity()
+               ? std::exp(params[kExponent] * geometry.log_cosine)
+               : 0.0;
+  }
+  static Rgb Value(const double* params, const Prepared& prepared, const Geometry& geometry) {
+    return LoadRgb(params, kRhoS) * (prepared.normalization.a * Power(params, geometry));
+  }
+  static void ValueAndGradient(const double* params, const Prepared& prepared,
+                               const Geometry& geometry, Rgb* f, double gradient[3][2]) {
+    const double power = Power(params, geometry);
     const double lobe = prepared.normalization.a * power;
     const double slope =
-        cosine > 0 ? prepared.normalization.v[0] * power + lobe * std::log(cosine) : 0.0;
+        power > 0 ? prepared.normalization.v[0] * power + lobe * geometry.log_cosine : 0.0;
     for (int c = 0; c < 3; ++c) {
       (*f)[c] = params[kRhoS + c] * lobe;
       gradient[c][0] = lobe;

@@ -14,9 +14,11 @@
 //   Part<T>, Angular<T, D>(p, wi, wo) -> Part<T>   what depends on the directions (and on the
 //                                                   shape parameter), one vectorizable loop
 //   Colour<T>(p, part) -> RgbT<T>                  the term's f from it, per channel
-//   Prepared, Prepare(p); ValueAndGradient(p, prepared, wi, wo, f, grad)
-//                                f and d f_c / d (the table's parameters in order, channel c of an
-//                                RGB one) per channel; `prepared` holds what a batch shares
+//   Prepared, Prepare(p)          what every sample shares at one point of the parameters
+//   Geometry, GeometryOf(wi, wo)  what a sample's f takes of its directions, computed once a fit
+//   Value(p, prepared, geometry)  f, and ValueAndGradient(p, prepared, geometry, f, grad): f and
+//                                d f_c / d (the table's parameters in order, channel c of an RGB
+//                                one) per channel, in closed form
 // For the integrators and samplers (a lobe; a diffuse term answers with the normal):
 //   Lobe(p) -> LobeCoordinates, LobeWeight(p) -> Rgb, EquivalentExponent(p)
 // For the energy bound and the fitter's free variables (fitters/parameterization.h):
