@@ -98,33 +98,6 @@ class MicrofacetAlbedoTable {
     return (e0 + f0 * (e1 - e0)) * T(1 + kRelativeMargin) + T(kAbsoluteMargin);
   }
 
-  // The largest f0 in [0, 1] whose bound (MaxLobeAlbedo) stays within `budget`: a lobe that
-  // follows another in a composition (a clear coat over a base) may take only what the first
-  // left. The bound is linear in f0 at every node, so this is the smallest over the nodes of the
-  // f0 where that node's bound meets the budget. Jet-safe like MaxLobeAlbedo.
-  template <typename T>
-  T MaxF0(const T& log_alpha, const T& budget) const {
-    int j;
-    const T t = AlphaCell(log_alpha, &j);
-    const double t_value = ScalarValue(t);
-    const double target = (ScalarValue(budget) - kAbsoluteMargin) / (1 + kRelativeMargin);
-    int best = -1;
-    double best_f0 = 1.0;
-    for (int k = 0; k < ThetaNodes(); ++k) {
-      const double e0 = Interpolate(&MicrofacetAlbedoTable::E0, j, k, t_value);
-      const double e1 = Interpolate(&MicrofacetAlbedoTable::E1, j, k, t_value);
-      if (e0 >= target) return T(0);  // even f0 = 0 does not fit
-      if (e1 > e0 && (target - e0) / (e1 - e0) < best_f0) {
-        best_f0 = (target - e0) / (e1 - e0);
-        best = k;
-      }
-    }
-    if (best < 0) return T(1);
-    const T e0 = Interpolate(&MicrofacetAlbedoTable::E0, j, best, t);
-    const T e1 = Interpolate(&MicrofacetAlbedoTable::E1, j, best, t);
-    return ((budget - T(kAbsoluteMargin)) / T(1 + kRelativeMargin) - e0) / (e1 - e0);
-  }
-
  private:
   // The alpha cell [j, j+1] of `log_alpha` and the fraction t within it (clamped to the range).
   template <typename T>

@@ -8,12 +8,17 @@
 // largest albedo over incidence from what is left, and the diffuse term takes a logistic share of
 // the rest:
 //   power-cosine lobe:  q_c = logistic(s_c) budget_c, rho_s_c = q_c / A(e), e = exp(shape)
-//   microfacet lobe:    f0_c = logistic(s_c) (capped when a lobe before it took a share),
-//                       alpha = exp(shape); it takes max_theta E(theta; alpha, f0_c)
+//   microfacet lobe:    f0_c = logistic(s_c), alpha = exp(shape); it takes
+//                       max_theta E(theta; alpha, f0_c)
 //   lambert:            rho_d_c = budget_c logistic(d_c)
 // The logistic ("log-odds") variables keep albedos positive as log space would, and bounded as
-// the energy budget requires. `grey_specular` gives the first lobe one variable for all channels
-// (one rho_s or f0, as for dielectric coatings); a second lobe (a clear coat) always has one.
+// the energy budget requires. With one lobe every reachable point conserves energy. A second
+// lobe takes its share of what the first left, which bounds a power-cosine lobe; a microfacet
+// lobe's albedo does not fall below its f0 = 0 value (Schlick's F tends to 1 at grazing for any
+// f0), so two microfacet lobes need the joint maximum over incidence of their summed albedos,
+// which the bound does not tabulate yet: no named model has two lobes. `grey_specular` gives the
+// first lobe one variable for all channels (one rho_s or f0, as for dielectric coatings); a second
+// lobe (a clear coat) always has one.
 //
 // Everything here is a pure function of the variables; a fit computes the map and its Jacobian
 // once per point (FitObjective::At) and hands them to every batch.
@@ -44,17 +49,12 @@ struct FitVariables {
 };
 
 // The tabulated bound of a lobe term (its Map's `bound`): the largest albedo over incidence of
-// AlbedoTableOf<Term>, and the largest per-channel parameter within a budget. Only terms whose
-// bound is tabulated (kTabulatedBound) call it.
+// AlbedoTableOf<Term>. Only terms whose bound is tabulated (kTabulatedBound) call it.
 template <typename Term>
 struct TabulatedBound {
   template <typename T>
   T MaxAlbedo(const T& log_shape, const T& p) const {
     return AlbedoTableOf<Term>().MaxLobeAlbedo(log_shape, p);
-  }
-  template <typename T>
-  T MaxF0(const T& log_shape, const T& budget) const {
-    return AlbedoTableOf<Term>().MaxF0(log_shape, budget);
   }
 };
 

@@ -14,6 +14,7 @@
 #include "fitters/residual.h"
 #include "models/composition.h"
 #include "models/lambert.h"
+#include "models/model_list.h"
 #include "test_util.h"
 
 namespace brdf {
@@ -243,6 +244,37 @@ TEST(NewTerm, FitRecoversTheGeneratingParameters) {
         << "parameter " << p << ": " << fit.model.ToString();
   }
   EXPECT_TRUE(fit.stderr_available) << fit.stderr_note;
+}
+
+// Two lobes: a clear coat (a second ggx lobe) over a base lobe. The composition names the coat's
+// parameters by its position, evaluates to the sum of its terms, and its fit variables are the
+// terms' in order (the coat's share grey).
+using CoatedGgx = models::Composition<models::Lambert, models::GgxLobe, models::GgxLobe>;
+
+TEST(TwoLobes, AreTheSumOfTheirTermsWithPositionalNames) {
+  const ModelInfo info = MakeModelInfo<CoatedGgx>("lambert+ggx+ggx");
+  EXPECT_EQ(info.terms, "lambert+ggx+ggx");
+  ASSERT_EQ(info.lobes.size(), 2u);
+  ASSERT_NE(info.FindParam("f0_2"), nullptr);
+  ASSERT_NE(info.FindParam("alpha_2"), nullptr);
+  EXPECT_EQ(info.FindParam("f0_2")->slot, 7);
+  EXPECT_EQ(info.FindParam("alpha_2")->slot, 10);
+  EXPECT_EQ(info.lobes[1].shape_slot, 10);
+  EXPECT_EQ(fitters::VariableLayout<CoatedGgx>::Count(false), 3 + 4 + 2);
+  const double coated[] = {0.3, 0.2, 0.1, 0.6, 0.4, 0.2, 0.35, 0.04, 0.05, 0.06, 0.06};
+  const double base[] = {0.3, 0.2, 0.1, 0.6, 0.4, 0.2, 0.35};
+  const double coat[] = {0, 0, 0, 0.04, 0.05, 0.06, 0.06};
+  std::mt19937 rng(11);
+  for (int k = 0; k < 100; ++k) {
+    const Vec3 wi = testing::RandomUpperDirection(&rng);
+    const Vec3 wo = testing::RandomUpperDirection(&rng);
+    const Rgb f = CoatedGgx::Eval<double>(coated, wi, wo);
+    const Rgb sum =
+        models::Ggx::Eval<double>(base, wi, wo) + models::Ggx::Eval<double>(coat, wi, wo);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], sum[c], 1e-14 * sum[c]);
+    const Rgb backward = CoatedGgx::Eval<double>(coated, wo, wi);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(f[c], backward[c], 1e-14 * f[c]);
+  }
 }
 
 }  // namespace

@@ -210,9 +210,8 @@ struct MicrofacetLobe {
   }
 
   // The fitter's variables s[1 or 3] and shape[1] (parameterization.h): alpha = exp(shape),
-  // f0_c = logistic(s_c) (times the largest f0 whose albedo fits the budget, when a lobe before
-  // this one took part of it), and the lobe takes max_theta E(theta; alpha, f0_c) (`bound`:
-  // bound.MaxAlbedo(ln alpha, f0) and bound.MaxF0(ln alpha, budget)).
+  // f0_c = logistic(s_c), and the lobe takes max_theta E(theta; alpha, f0_c) (`bound`:
+  // bound.MaxAlbedo(ln alpha, f0)) of the budget.
   static int NumVariables(bool grey) { return (grey ? 1 : 3) + 1; }
   static void VariableBounds(bool grey, double* lower, double* upper) {
     const int s = grey ? 1 : 3;
@@ -222,31 +221,27 @@ struct MicrofacetLobe {
     upper[s] = std::log(kFitShapeMax);
   }
   template <typename T, typename Bound>
-  static void Map(const T* variables, bool grey, const T* budget, T* params, T* taken,
+  static void Map(const T* variables, bool grey, const T*, T* params, T* taken,
                   const Bound& bound) {
     using std::exp;
     const int s = grey ? 1 : 3;
     const T& log_alpha = variables[s];
     for (int c = 0; c < 3; ++c) {
-      T f0 = Logistic(variables[grey ? 0 : c]);
-      // The whole budget (a first lobe's) is 1: f0 is free in (0, 1) and the diffuse term takes
-      // what the lobe leaves.
-      if (budget[c] < T(1)) f0 = f0 * bound.MaxF0(log_alpha, budget[c]);
+      const T f0 = Logistic(variables[grey ? 0 : c]);
       params[kF0 + c] = f0;
       taken[c] = bound.MaxAlbedo(log_alpha, f0);
     }
     params[kAlpha] = exp(log_alpha);
   }
   template <typename Bound>
-  static void Unmap(const double* params, bool grey, const double* budget, double* variables,
+  static void Unmap(const double* params, bool grey, const double*, double* variables,
                     double* taken, const Bound& bound) {
     const double log_alpha =
         std::clamp(std::log(params[kAlpha]), std::log(kFitShapeMin), std::log(kFitShapeMax));
     double s[3];
     for (int c = 0; c < 3; ++c) {
-      const double cap = budget[c] < 1 ? bound.MaxF0(log_alpha, budget[c]) : 1.0;
-      s[c] = BoundedLogit(cap > 0 ? params[kF0 + c] / cap : 1.0);
-      taken[c] = bound.MaxAlbedo(log_alpha, cap * Logistic(s[c]));
+      s[c] = BoundedLogit(params[kF0 + c]);
+      taken[c] = bound.MaxAlbedo(log_alpha, Logistic(s[c]));
     }
     PackShares(s, log_alpha, grey, variables);
   }
@@ -254,7 +249,7 @@ struct MicrofacetLobe {
   // being linear in f0), or a dielectric's 0.04: the Fresnel rise toward grazing then has to
   // come from the data, which keeps a start from mistaking a grazing peak for a metal.
   template <typename Bound>
-  static void Guess(const PeakSample& peak, const TermStart& start, const double* budget,
+  static void Guess(const PeakSample& peak, const TermStart& start, const double*,
                     const Bound& bound, double* variables, double* taken) {
     double unit[kNumParams] = {0, 0, 0, start.shape};
     const double at_zero = Eval<double>(unit, peak.wi, peak.wo)[0];
@@ -266,9 +261,8 @@ struct MicrofacetLobe {
       if (start.from_peak && at_one - at_zero > 1e-12) {
         f0 = std::clamp(excess / (at_one - at_zero), 0.005, 0.95);
       }
-      const double cap = budget[c] < 1 ? bound.MaxF0(std::log(start.shape), budget[c]) : 1.0;
-      variables[c] = Logit(std::clamp(f0 / cap, 1e-6, 1 - 1e-6));
-      taken[c] = bound.MaxAlbedo(std::log(start.shape), cap * Logistic(variables[c]));
+      variables[c] = Logit(f0);
+      taken[c] = bound.MaxAlbedo(std::log(start.shape), Logistic(variables[c]));
     }
     variables[3] = std::log(start.shape);
   }
