@@ -6,6 +6,7 @@
 #include <ceres/dynamic_autodiff_cost_function.h>
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -516,6 +517,41 @@ TEST(Fit, NormalSumsWithoutTheJacobianMatchTheJacobianRows) {
   ExpectNormalSumsMatchJacobianRows<models::BlinnPhongExact>(kTruths[3]);
   ExpectNormalSumsMatchJacobianRows<models::Ggx>(kTruths[4]);
   ExpectNormalSumsMatchJacobianRows<models::Beckmann>(kTruths[5]);
+}
+
+// The objective's sums and whole fits (the subsampled path included) are the same bits whatever
+// the thread count: the batches are summed in a fixed tree, Ceres runs on one thread.
+TEST(Fit, ObjectiveAndFitsDoNotDependOnTheThreadCount) {
+  Noise noise;
+  noise.relative = 0.02;
+  for (const char* text : {kTruths[2], kTruths[4], kTruths[5]}) {
+    const Model truth = ParseModel(text);
+    const Measurement data = Synthesize(truth, noise);
+    const fitters::PreparedSamples prepared = fitters::PrepareSamples(data);
+    VisitModelType(truth.name(), [&](auto model_type) {
+      using M = decltype(model_type);
+      const fitters::FitObjective<M> objective(prepared.samples, fitters::Loss::kLog, false);
+      const std::vector<double> x = TestPoint<M>(false);
+      std::vector<fitters::NormalSums> sums;
+      for (int threads : {1, 2}) {
+        tbb::task_arena arena(threads);
+        sums.push_back(arena.execute([&] { return objective.Sums(objective.At(x.data())); }));
+      }
+      EXPECT_EQ(sums[0].cost, sums[1].cost) << text;
+      EXPECT_TRUE(sums[0].a == sums[1].a && sums[0].b == sums[1].b && sums[0].g == sums[1].g)
+          << text;
+    });
+    std::vector<FitResult> fits;
+    for (int threads : {1, 2}) {
+      FitOptions options;
+      options.threads = threads;
+      options.max_samples = 1000;  // the subsampled start, then the polish on every sample
+      fits.push_back(FitModel(data, truth.name(), options));
+    }
+    EXPECT_EQ(fits[0].model.params(), fits[1].model.params()) << text;
+    EXPECT_EQ(fits[0].stderr_values, fits[1].stderr_values) << text;
+    EXPECT_EQ(fits[0].bic, fits[1].bic) << text;
+  }
 }
 
 // The same for the microfacet models, whose parameterization runs through the tabulated
