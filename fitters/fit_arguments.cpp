@@ -21,6 +21,7 @@ FitOptions FitArguments::ToFitOptions(int threads) const {
 brdf::ReadOptions FitArguments::ToReadOptions() const {
   brdf::ReadOptions options;
   options.illuminant = ParseIlluminant(illuminant);
+  options.reciprocal = reciprocal;
   return options;
 }
 

@@ -20,6 +20,7 @@ struct FitArguments {
   int max_iterations = FitOptions{}.max_iterations;
   bool grey_specular = false;
   std::string illuminant = "D65";
+  bool reciprocal = false;  // RGL-EPFL files: the reciprocal reading (ReadOptions::reciprocal)
 
   bool Automatic() const { return model == "auto"; }
   // Checks the model name (a usage error names the known ones) and the numbers.

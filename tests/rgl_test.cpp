@@ -8,11 +8,14 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/angles.h"
 #include "core/colour.h"
 #include "core/errors.h"
+#include "energy/albedo.h"
+#include "energy/measured.h"
 #include "fitters/fit_samples.h"
 #include "io/formats.h"
 #include "io/rgl_bsdf.h"
@@ -138,16 +141,14 @@ TEST(RglBsdf, EvaluationAtGridNodesIsTheStoredValueTimesTheJacobianFactor) {
         const Vec2 u_wi(std::sqrt(theta_i[t] * 2 / kPi), 0.5);  // phi_i = 0
         const double factor =
             Bilinear(ndf, 2, 128, node.u_wm) / (4 * Bilinear(sigma, 2, 128, u_wi));
-        // In the file's orientation, f cos(theta_o); brdfkit's f divides it by cos(theta_o)
-        // where the view is the less grazing direction.
+        // In the file's orientation, f cos(theta_o); brdfkit's f divides it by cos(theta_o),
+        // wi the tensor's incidence (the reference reading).
         const Rgb value = brdf->EvalCosine(node.wi, node.wo);
         const Rgb f = brdf->Eval(node.wi, node.wo);
         for (int c = 0; c < 3; ++c) {
           const double stored = rgb[((t * 3 + c) * n + row) * n + col];
           const double expected = std::max(0.0, stored) * factor;
-          if (node.wo.z() >= node.wi.z()) {
-            EXPECT_NEAR(f[c], expected / node.wo.z(), 1e-7 * expected / node.wo.z() + 1e-12);
-          }
+          EXPECT_NEAR(f[c], expected / node.wo.z(), 1e-7 * expected / node.wo.z() + 1e-12);
           EXPECT_NEAR(value[c], expected, 1e-7 * expected + 1e-12)
               << "theta_i " << t << " row " << row << " col " << col << " channel " << c;
         }
@@ -181,11 +182,42 @@ TEST(RglBsdf, SamplesAreTheGridNodes) {
   EXPECT_EQ(measurement.metadata.at("description"), "White A4 paper (160 gsm)");
   const Sample& sample = measurement.samples[(3 * 32 + 10) * 32 + 7];
   ASSERT_FALSE(sample.missing);
-  ASSERT_GE(sample.wo.z(), sample.wi.z());  // Eval reads this node in the file's orientation
   const Rgb evaluated = measurement.tabulated->Eval(sample.wi, sample.wo);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(evaluated[c], sample.value[c], 1e-7 * sample.value[c]);
-  // Eval is reciprocal by construction (the more grazing direction is read as the light).
-  EXPECT_EQ(Luminance(measurement.tabulated->Eval(sample.wo, sample.wi)), Luminance(evaluated));
+  // The reciprocal reading, on request, is reciprocal by construction (the more grazing
+  // direction is read as the light); the reference reading is not.
+  ReadOptions reciprocal;
+  reciprocal.reciprocal = true;
+  const Measurement symmetric = ReadMeasurement(DataPath(kPaper), reciprocal);
+  const Rgb forward = symmetric.tabulated->Eval(sample.wi, sample.wo);
+  EXPECT_EQ(Luminance(symmetric.tabulated->Eval(sample.wo, sample.wi)), Luminance(forward));
+}
+
+// The satin's table is far from reciprocal near grazing; the reference reading reproduces the
+// values of the format's authors' evaluator and Mitsuba 3's `measured` plugin (wi the tensor's
+// incidence, f = the stored f cos(theta_o) / cos(theta_o)), read from them at these directions:
+// f(68.8 -> 79.4 deg, mirror side) = 1.38, f(78.7 -> 68.8) = 40.9 and f(68.8 -> 78.7) = 1.57 sr^-1,
+// where the reciprocal reading gives 40.1 for the first. The red channel here is 1.419 and 1.626
+// for the first and last (within 4 %, the middle one too: the quoted values' channel is not
+// stated); what the test pins is the reading (a grazing view is not read as the light) and the
+// order of magnitude it makes.
+TEST(RglBsdf, ReferenceReadingGivesTheReferenceValuesOfTheSatin) {
+  const auto satin =
+      RglBrdf::FromTensor(TensorFile::Read(DataPath("rgl-bsdf/satin_rosaline_rgb.bsdf")));
+  const auto f = [&](double theta_i, double theta_o) {
+    return satin->Eval(SphericalDirection(DegToRad(theta_i), 0.0),
+                       SphericalDirection(DegToRad(theta_o), kPi))[0];
+  };
+  EXPECT_NEAR(f(68.8, 79.4), 1.38, 0.04 * 1.38);
+  EXPECT_NEAR(f(78.7, 68.8), 40.9, 0.04 * 40.9);
+  EXPECT_NEAR(f(68.8, 78.7), 1.57, 0.04 * 1.57);
+  ReadOptions reciprocal;
+  reciprocal.reciprocal = true;
+  const auto symmetric = RglBrdf::FromTensor(
+      TensorFile::Read(DataPath("rgl-bsdf/satin_rosaline_rgb.bsdf")), reciprocal);
+  const double symmetric_f = symmetric->Eval(SphericalDirection(DegToRad(68.8), 0.0),
+                                             SphericalDirection(DegToRad(79.4), kPi))[0];
+  EXPECT_GT(symmetric_f, 20.0);  // 40.1: the grazing view read as the light
 }
 
 // Sample and Invert are inverse maps, and the density integrates to one, on the real vndf
@@ -281,6 +313,26 @@ Rgb Albedo(const RglBrdf& brdf, double theta_i_deg) {
     }
   }
   return sum;
+}
+
+// `brdf energy`'s directional albedo of measured data integrates the stored f cos(theta_o) over
+// the outgoing hemisphere at a held incidence, as the reference does: against the midpoint rule
+// above (independent of the energy library's quadrature) on the satin, whose table is not
+// reciprocal, and the ibiza film. The reference values (read from the authors' evaluator):
+// satin 0.744 at 60 deg, ibiza 0.319 at 30 deg (red).
+TEST(RglBsdf, MeasuredAlbedoHoldsTheIncidenceAndIntegratesTheView) {
+  for (const auto& [name, theta, reference] :
+       {std::tuple{"satin_rosaline", 60.0, 0.744}, std::tuple{"cc_ibiza_sunset", 30.0, 0.319}}) {
+    const std::string path = DataPath("rgl-bsdf/" + std::string(name) + "_rgb.bsdf");
+    const auto brdf = RglBrdf::FromTensor(TensorFile::Read(path));
+    const Rgb midpoint = Albedo(*brdf, theta);
+    const AlbedoEstimate integrated =
+        MeasuredDirectionalAlbedo(LoadMeasuredBrdf(path), DegToRad(theta), AlbedoOptions{});
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(integrated.albedo[c], midpoint[c], 0.01 * midpoint[c]) << name << " " << c;
+    }
+    EXPECT_NEAR(integrated.albedo[0], reference, 0.01) << name;
+  }
 }
 
 // White 160 gsm office paper reflects most light, diffusely: its albedo should be high and
@@ -381,7 +433,7 @@ TEST(RglBsdf, SpectralFileWithConstantTablesGivesTheClosedForm) {
     const Rgb value = brdf->EvalCosine(wi, wo);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(value[c], 2 * static_cast<float>(v), 1e-4);
     const Rgb f = brdf->Eval(wi, wo);
-    EXPECT_NEAR(f[1], 2 * static_cast<float>(v) / std::max(wi.z(), wo.z()), 1e-3 * f[1]);
+    EXPECT_NEAR(f[1], 2 * static_cast<float>(v) / wo.z(), 1e-3 * f[1]);
   }
 }
 

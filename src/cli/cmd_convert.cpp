@@ -59,6 +59,7 @@ Measurement EvaluateOnSchedule(const Measurement& input, const std::string& spec
 Command AddConvertCommand(CLI::App& parent) {
   struct Options {
     std::string input, output, format, illuminant = "D65", schedule;
+    bool reciprocal = false;
     bool quiet = false;
   };
   auto options = std::make_shared<Options>();
@@ -74,6 +75,9 @@ Command AddConvertCommand(CLI::App& parent) {
                   "output format, overriding the extension (native-csv, merl)");
   app->add_option("--illuminant", options->illuminant, "illuminant for spectral inputs (D65 or E)")
       ->capture_default_str();
+  app->add_flag("--reciprocal", options->reciprocal,
+                "RGL-EPFL inputs: read the table with the more grazing direction as the light "
+                "(reciprocal by construction) instead of as the format's reference evaluates it");
   app->add_option("--schedule", options->schedule,
                   "evaluate a dense input (MERL, RGL-EPFL) at the geometries of a gonio schedule "
                   "(as in brdf measure, e.g. inplane:step=5) instead of writing its own samples");
@@ -104,6 +108,7 @@ Command AddConvertCommand(CLI::App& parent) {
         } else {
           ReadOptions read_options;
           read_options.illuminant = ParseIlluminant(options->illuminant);
+          read_options.reciprocal = options->reciprocal;
           Measurement measurement = ReadMeasurement(options->input, read_options);
           if (!options->schedule.empty()) {
             measurement = EvaluateOnSchedule(measurement, options->schedule);

@@ -44,6 +44,9 @@ void AddFitOptions(CLI::App* app, FitArguments* arguments) {
                 "one rho_s (or f0, for ggx and beckmann) for all channels");
   app->add_option("--illuminant", arguments->illuminant, "for spectral files: D65 or E")
       ->capture_default_str();
+  app->add_flag("--reciprocal", arguments->reciprocal,
+                "RGL-EPFL files: read the table with the more grazing direction as the light "
+                "(reciprocal by construction) instead of as the format's reference evaluates it");
 }
 
 }  // namespace brdf::cli

@@ -297,16 +297,23 @@ AlbedoEstimate ModelDirectionalAlbedo(const Model& model, double theta_o,
 
 AlbedoEstimate MeasuredDirectionalAlbedo(const MeasuredBrdf& measured, double theta_o,
                                          const AlbedoOptions& options, uint64_t stream) {
-  const Vec3 wo = OutgoingAt(theta_o);
+  // Measured data need not be reciprocal (RGL-EPFL tables at grazing): the albedo at an
+  // incidence integrates f(wi, wo) cos(theta_o) over the outgoing hemisphere with wi held, as the
+  // data's reference does. The integrators hold their second argument, so the data are handed
+  // to them with the directions swapped; for reciprocal data it is the same integral.
+  const Vec3 wi = OutgoingAt(theta_o);
+  const BrdfFunction held_light = [&measured](const Vec3& wo, const Vec3& light) {
+    return measured.brdf(light, wo);
+  };
   switch (options.method) {
     case AlbedoMethod::kQuadrature: {
       LobeQuadratureOptions capped = options.quadrature;
       capped.max_intervals = std::min(capped.max_intervals, options.measured_max_intervals);
-      return IntegrateInLobeCoordinates(measured.brdf, wo, measured.coordinates, capped);
+      return IntegrateInLobeCoordinates(held_light, wi, measured.coordinates, capped);
     }
     case AlbedoMethod::kMonteCarlo: {
       RandomStream random(options.seed, stream);
-      return EstimateAlbedoCosine(measured.brdf, wo, options.samples, &random);
+      return EstimateAlbedoCosine(held_light, wi, options.samples, &random);
     }
     case AlbedoMethod::kImportance:
       break;

@@ -25,6 +25,9 @@ struct ReadOptions {
   // may then set Measurement::sample_source instead and make them only when asked: a MERL table's
   // 1.46 million samples are 117 MB. Readers of other formats fill `samples` regardless.
   bool samples = true;
+  // RGL-EPFL tensors: read with the more grazing direction as the light (reciprocal by
+  // construction) instead of as the format's reference evaluates them (io/rgl_bsdf.h).
+  bool reciprocal = false;
 };
 
 // What a writer wants the user to know (e.g. samples binned onto a grid).

@@ -100,6 +100,7 @@ std::shared_ptr<const RglBrdf> RglBrdf::FromTensor(const TensorFile& file,
                                                    const ReadOptions& options) {
   std::shared_ptr<RglBrdf> brdf(new RglBrdf());
   brdf->source_ = file.path();
+  brdf->reciprocal_ = options.reciprocal;
   const FieldChecker check(file);
 
   if (const TensorField* description = file.Find("description")) {
@@ -277,8 +278,8 @@ Rgb RglBrdf::EvalCosine(const Vec3& wi, const Vec3& wo) const {
 
 Rgb RglBrdf::Eval(const Vec3& wi, const Vec3& wo) const {
   if (wi.z() <= 0.0 || wo.z() <= 0.0) return Rgb::Zero();
-  // The file holds f cos(theta_o); see the header for the choice of orientation.
-  if (wo.z() >= wi.z()) return EvalCosine(wi, wo) / wo.z();
+  // The file holds f cos(theta_o); see the header for the two readings.
+  if (!reciprocal_ || wo.z() >= wi.z()) return EvalCosine(wi, wo) / wo.z();
   return EvalCosine(wo, wi) / wi.z();
 }
 
@@ -358,8 +359,11 @@ std::string RglBrdf::Describe() const {
          std::to_string(rows_) + "x" + std::to_string(cols_) +
          " table, bilinear, linear between the " + std::to_string(theta_i_.size()) +
          " theta_i nodes; negative channels clipped to 0; f = stored value" +
-         (jacobian_ ? " x ndf/(4 sigma)" : "") +
-         " / cos(theta_o), read with the more grazing direction as the light (reciprocity)";
+         (jacobian_ ? " x ndf/(4 sigma)" : "") + " / cos(theta_o), " +
+         (reciprocal_ ? std::string("read with the more grazing direction as the light "
+                                    "(the reciprocal reading, on request)")
+                      : std::string("wi the tensor's incidence (the reference reading of the "
+                                    "format's authors and Mitsuba 3)"));
 }
 
 bool SniffRglBsdf(std::string_view head, int64_t) { return IsTensorFile(head); }
@@ -386,10 +390,10 @@ Measurement ReadRglBsdf(const std::string& path, const ReadOptions& options) {
           sample.missing = node.wo.z() <= 0.0 || grazing;
           below_horizon += node.wo.z() <= 0.0 && !grazing;
           grazing_nodes += grazing;
-          // The node's own value where the view is the less grazing direction; elsewhere the
-          // evaluator's reciprocal reading, so that samples and evaluator agree everywhere.
+          // The node's own value; with the reciprocal reading, where the view is the more
+          // grazing direction, the evaluator's, so that samples and evaluator agree everywhere.
           if (!sample.missing) {
-            sample.value = node.wo.z() >= node.wi.z()
+            sample.value = !brdf->reciprocal() || node.wo.z() >= node.wi.z()
                                ? Rgb(node.stored * node.jacobian_factor / node.wo.z())
                                : brdf->Eval(node.wi, node.wo);
           }
@@ -415,9 +419,12 @@ Measurement ReadRglBsdf(const std::string& path, const ReadOptions& options) {
                           " deg) x " + std::to_string(n_phi) + " phi_i (" + Degrees(brdf->phi_i()) +
                           " deg)" + (brdf->isotropic() ? ", isotropic" : ", anisotropic");
   metadata["samples"] =
-      "every grid node of every incidence, carried through the VNDF warp (the "
-      "stored value / cos(theta_o) where theta_o <= theta_i, else the "
-      "reciprocal reading, as the evaluation); " +
+      std::string(
+          "every grid node of every incidence, carried through the VNDF warp (the "
+          "stored value / cos(theta_o)") +
+      (brdf->reciprocal() ? " where theta_o <= theta_i, else the reciprocal reading, as the "
+                            "evaluation); "
+                          : "); ") +
       std::to_string(below_horizon) +
       " nodes whose wo falls at or below the horizon are flagged missing" +
       (grazing_nodes > 0 ? ", and the " + std::to_string(grazing_nodes) +

@@ -39,12 +39,15 @@ class RglBrdf : public TabulatedBrdf, public CellMeasure {
   static std::shared_ptr<const RglBrdf> FromTensor(const TensorFile& file,
                                                    const ReadOptions& options = {});
 
-  // f in sr^-1. The stored f cos(theta_o) is divided by the larger of the two cosines: the
-  // table is read with the more grazing direction as the light, f(wi, wo) = f(wo, wi)
-  // (reciprocity, DESIGN §1), so that a grazing view never divides a small, noisy value by a
-  // vanishing cosine. Exactly reciprocal by construction; where wo.z >= wi.z it is the
-  // measurement as stored.
+  // f in sr^-1, as the format's authors and Mitsuba 3's `measured` plugin evaluate it (DESIGN
+  // §4): wi is the tensor's incidence and f = the stored f cos(theta_o) / cos(theta_o). Measured
+  // data are not reciprocal at grazing, so f(wi, wo) and f(wo, wi) can differ. With
+  // ReadOptions::reciprocal the table is read with the more grazing direction as the light
+  // instead, f(wi, wo) = f(wo, wi) by construction: the stored value is then divided by the
+  // larger of the two cosines, never by a vanishing one (a grazing view divides a small, noisy
+  // value by it), at the price of not being the measurement where the light is the more grazing.
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override;
+  bool reciprocal() const { return reciprocal_; }
   // What the file stores, in its own orientation (wi the light): f cos(theta_o), zero below
   // the horizon.
   Rgb EvalCosine(const Vec3& wi, const Vec3& wo) const;
@@ -83,7 +86,7 @@ class RglBrdf : public TabulatedBrdf, public CellMeasure {
   std::string colour_source_;  // "rgb" or how spectra became RGB
   std::vector<double> theta_i_, phi_i_;
   int rows_ = 0, cols_ = 0;
-  bool isotropic_ = true, jacobian_ = true;
+  bool isotropic_ = true, jacobian_ = true, reciprocal_ = false;
   Warp2D ndf_, sigma_, vndf_, rgb_;
   std::vector<double> rgb_values_;  // [phi_i, theta_i, 3, rows, cols], as stored
   int64_t clipped_negative_ = 0;

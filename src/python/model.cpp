@@ -126,9 +126,10 @@ the fitted model's f.)doc")
       "fit",
       [](const py::object& measurement_or_path, const std::string& model, const std::string& loss,
          const std::string& robust, size_t max_samples, uint64_t seed, int threads,
-         int max_iterations, bool grey_specular, const std::string& illuminant) {
-        const fitters::FitArguments arguments{model, loss,           robust,        max_samples,
-                                              seed,  max_iterations, grey_specular, illuminant};
+         int max_iterations, bool grey_specular, const std::string& illuminant, bool reciprocal) {
+        const fitters::FitArguments arguments{model,         loss,       robust,
+                                              max_samples,   seed,       max_iterations,
+                                              grey_specular, illuminant, reciprocal};
         const fitters::FitOptions options = arguments.ToFitOptions(threads);
         std::shared_ptr<const Measurement> measurement;
         if (py::isinstance<py::str>(measurement_or_path)) {
@@ -164,6 +165,7 @@ the fitted model's f.)doc")
       py::arg("seed") = defaults.seed, py::arg("threads") = defaults.threads,
       py::arg("max_iterations") = defaults.max_iterations,
       py::arg("grey_specular") = defaults.grey_specular, py::arg("illuminant") = "D65",
+      py::arg("reciprocal") = false,
       R"doc(
 Fits a reflectance model to a measurement with Ceres, as `brdf fit` does (DESIGN §6); the same
 inputs give the same report, bit for bit (time_s aside).
@@ -182,6 +184,9 @@ max_iterations: iterations of each Ceres solve (default 200); a fit that needs m
                 converged.
 grey_specular:  one rho_s (or f0, for ggx and beckmann) for all channels.
 illuminant:     when `measurement` is the path of a spectral file: "D65" (default) or "E".
+reciprocal:     when `measurement` is the path of an RGL-EPFL file: read its table with the more
+                grazing direction as the light (reciprocal by construction) instead of as the
+                format's reference evaluates it (default False).
 
 Returns a FitResult. A fit that did not converge warns (brdfkit.ConvergenceWarning) and
 returns its result with converged False. The GIL is released while fitting.)doc");
