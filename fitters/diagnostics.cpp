@@ -13,7 +13,6 @@
 
 #include "core/angles.h"
 #include "core/format.h"
-#include "core/pages.h"
 #include "fitters/parameterization.h"
 
 namespace brdf::fitters {
@@ -335,7 +334,7 @@ ResidualCheck CheckResiduals(const Model& model, const PreparedSamples& prepared
       [](double a, double b) { return std::max(a, b); });
   // |z| of each channel of each sample, in file order; kNoScore where a channel has none.
   std::vector<double> scores;
-  AssignPrefaulted(&scores, 3 * usable, kNoScore);  // fresh pages, faulted in from every core
+  scores.assign(3 * usable, kNoScore);
   const auto score_sample = [&](size_t u) {
     const FitSample& sample = samples[u];
     const Rgb f = model.Eval(sample.wi, sample.wo);
