@@ -412,6 +412,8 @@ bool SniffMerl(std::string_view head, int64_t file_size) {
   return dims[0] == kDimensions[0] && dims[1] == kDimensions[1] && dims[2] == kDimensions[2];
 }
 
+void CopyMerl(const std::string& from, const std::string& to) { MerlTable::Read(from).Write(to); }
+
 Measurement ReadMerl(const std::string& path, const ReadOptions& options) {
   MerlTable table = MerlTable::Read(path);
   // The evaluator may live long after this read (a Python session): with values of its own, a
