@@ -16,7 +16,6 @@
 #include "core/colour.h"
 #include "core/enum_names.h"
 #include "core/errors.h"
-#include "core/pages.h"
 #include "io/merl.h"
 
 namespace brdf::fitters {
@@ -120,7 +119,6 @@ const char* LossName(Loss loss) { return NameOf(kLossNames, loss); }
 void Release(PreparedSamples* prepared) {
   prepared->samples = std::vector<FitSample>();
   prepared->sigma = std::vector<Rgb>();
-  ReturnFreePages();
 }
 
 PreparedSamples PrepareSamples(const Measurement& measurement) {
@@ -145,7 +143,7 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   const size_t count = first_usable[chunks];
   prepared.skipped_missing = std::accumulate(missing.begin(), missing.end(), size_t{0});
   prepared.skipped_invalid = source.size() - count - prepared.skipped_missing;
-  AssignPrefaulted(&prepared.samples, count);
+  prepared.samples.resize(count);
   // Solid-angle weights from a table's cells (or samples on the MERL grid written by another
   // format) are taken in the same pass as the copies.
   std::shared_ptr<const CellMeasure> cells = measurement.cell_measure;

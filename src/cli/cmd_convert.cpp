@@ -92,7 +92,7 @@ Command AddConvertCommand(CLI::App& parent) {
           Measurement model = ModelAsMeasurement(LoadModel(options->input), options->input);
           if (!options->schedule.empty()) {
             model = EvaluateOnSchedule(model, options->schedule);
-          } else if (output_format.name != "merl") {
+          } else if (!output_format.fixed_grid) {
             throw UsageError(
                 "a model has no samples of its own: give --schedule to evaluate it at a gonio "
                 "schedule's geometries, or write a MERL .binary");
@@ -101,10 +101,10 @@ Command AddConvertCommand(CLI::App& parent) {
           from = std::to_string(model.samples.empty() ? MerlTable::kCells : model.samples.size()) +
                  " evaluations of " + model.metadata["model"];
         } else if (const FileFormat& input_format = DetectFormat(options->input);
-                   input_format.name == "merl" && output_format.name == "merl" &&
+                   &input_format == &output_format && input_format.copy != nullptr &&
                    options->schedule.empty()) {
-          MerlTable::Read(options->input).Write(options->output);
-          from = std::to_string(MerlTable::kCells) + " merl samples";
+          input_format.copy(options->input, options->output);
+          from = "an unchanged copy of the " + input_format.name + " file";
         } else {
           ReadOptions read_options;
           read_options.illuminant = ParseIlluminant(options->illuminant);

@@ -1,6 +1,5 @@
 #include "cli/fit_options.h"
 
-#include "core/pages.h"
 #include "io/formats.h"
 #include "models/registry.h"
 
@@ -18,7 +17,6 @@ Measurement ReadForFit(const std::string& path, const FitArguments& arguments, b
   options.samples = samples;
   Measurement measurement = ReadMeasurement(path, options);
   measurement.tabulated.reset();  // the readers that build one regardless
-  ReturnFreePages();
   return measurement;
 }
 

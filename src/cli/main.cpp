@@ -83,16 +83,10 @@ int main(int argc, char** argv) {
       }
       return command.run();
     }
-  } catch (const brdf::ranks::RankFailure& error) {
-    return ReportError(error.what(), error.exit_status());
-  } catch (const brdf::ComputeError& error) {
-    return ReportError(error.what(), 3);
-  } catch (const brdf::Error& error) {
-    return ReportError(error.what(), 2);
-  } catch (const std::bad_alloc&) {
-    return ReportError("out of memory", 1);
-  } catch (const std::exception& error) {
-    return ReportError(std::string("internal error: ") + error.what(), 1);
+  } catch (...) {
+    std::string message;
+    const int status = brdf::ExitStatus(std::current_exception(), &message);
+    return ReportError(message, status);
   }
   return 2;
 }

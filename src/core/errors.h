@@ -1,8 +1,9 @@
-// Typed errors. Library code throws; only main() turns them into exit codes (DESIGN §3):
-// UsageError and InputError -> 2, ComputeError -> 3.
+// Typed errors. Library code throws; only main() turns them into exit codes (DESIGN §3), through
+// ExitStatus below: UsageError, InputError and OutputError -> 2, ComputeError -> 3.
 #pragma once
 
 #include <cstdint>
+#include <exception>
 #include <stdexcept>
 #include <string>
 
@@ -11,6 +12,8 @@ namespace brdf {
 class Error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+  // The process's exit status for this error (DESIGN §3).
+  virtual int exit_status() const { return 2; }
 };
 
 // A bad command line or model string: exit status 2.
@@ -70,6 +73,11 @@ class OutputError : public Error {
 class ComputeError : public Error {
  public:
   using Error::Error;
+  int exit_status() const override { return 3; }
 };
+
+// The one map from an error to the process's exit status (DESIGN §3) and the message the user
+// reads: an Error's own status; 1 for anything else, an internal error (out of memory included).
+int ExitStatus(const std::exception_ptr& error, std::string* message);
 
 }  // namespace brdf

@@ -1,7 +1,7 @@
 // A regular file's bytes mapped read-only into memory, for large binary tables read as they lie
 // on disk (the MERL reader). The pages are the system's file cache: nothing is copied, and no
-// fresh memory is faulted in (on the virtual machine of docs/performance.md, *Fresh pages*,
-// reading a 35 MB MERL file into a new buffer took 136-142 ms, mapping it 4.5 ms).
+// fresh memory is faulted in (docs/reading.md: on a machine where fresh pages are dear, reading a
+// 35 MB MERL file into a new buffer took 136-142 ms, mapping it 4.5 ms).
 #pragma once
 
 #include <cstddef>

@@ -33,38 +33,6 @@ bool g_failed_in_protocol = false;       // the last Distribute failed after eve
 // Message tags; results go to rank 0, stop and outcome come from it.
 enum Tag : int { kResult = 1, kDone = 2, kFailed = 3, kStop = 4, kOutcome = 5 };
 
-// The exit status an exception maps to (DESIGN §3; main.cpp) and its message.
-int StatusOf(const std::exception_ptr& error, std::string* message) {
-  try {
-    std::rethrow_exception(error);
-  } catch (const RankFailure& failure) {
-    *message = failure.what();
-    return failure.exit_status();
-  } catch (const ComputeError& failure) {
-    *message = failure.what();
-    return 3;
-  } catch (const Error& failure) {
-    *message = failure.what();
-    return 2;
-  } catch (const std::bad_alloc&) {
-    *message = "out of memory";
-    return 1;
-  } catch (const std::exception& failure) {
-    *message = failure.what();  // main() adds "internal error"
-    return 1;
-  } catch (...) {
-    *message = "unknown exception";
-    return 1;
-  }
-}
-
-// The error of a failed job as rank 0 (or every rank) throws it.
-[[noreturn]] void ThrowStatus(int status, const std::string& message) {
-  if (status == 3) throw ComputeError(message);
-  if (status == 2) throw Error(message);
-  throw std::runtime_error(message);
-}
-
 // A rank's own items, computed on a thread of their own (and TBB's workers under it) while the
 // main thread talks to the other ranks. Finished results wait in a queue for the main thread.
 //
@@ -263,7 +231,7 @@ void RunWorker(const WorkPlan& plan, const std::function<void()>& prepare,
   }
   if (error) {
     std::string message;
-    const int status = StatusOf(error, &message);
+    const int status = ExitStatus(error, &message);
     Send(0, kFailed, PackStatus(status, message));
   } else {
     Send(0, kDone, "");
@@ -312,7 +280,7 @@ void RunRoot(const WorkPlan& plan, const std::function<void()>& prepare,
   };
   auto fail_here = [&](std::exception_ptr error) {
     std::string message;
-    const int status = StatusOf(error, &message);
+    const int status = ExitStatus(error, &message);
     fail(0, status, message, error);
   };
   auto deliver = [&](size_t item, int rank, std::string&& result) {
@@ -393,7 +361,7 @@ void RunRoot(const WorkPlan& plan, const std::function<void()>& prepare,
   if (!failure.failed) return;
   g_failed_in_protocol = true;
   if (g_size == 1 && failure.original) std::rethrow_exception(failure.original);
-  ThrowStatus(failure.status, message);
+  throw RankFailure(message, failure.status);
 }
 
 }  // namespace

@@ -53,12 +53,13 @@ inline bool IsRoot() { return Rank() == 0; }
 // True when the last Distribute failed with every rank informed (the job can end normally).
 bool FailedInStep();
 
-// A job that failed on another rank, thrown on ranks other than 0 (which print nothing for it);
-// exit_status() is the status the whole job exits with.
+// A job that failed in a distributed step, thrown on every rank once all know of it (rank 0
+// prints it, the others print nothing for it); exit_status() is the status the whole job exits
+// with (core/errors.h, ExitStatus).
 class RankFailure : public Error {
  public:
   RankFailure(const std::string& what, int exit_status) : Error(what), exit_status_(exit_status) {}
-  int exit_status() const { return exit_status_; }
+  int exit_status() const override { return exit_status_; }
 
  private:
   int exit_status_;

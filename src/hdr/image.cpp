@@ -6,14 +6,11 @@
 #include <cstring>
 
 #include "core/errors.h"
-#include "core/pages.h"
 
 namespace brdf {
 
 Image::Image(int width, int height, float alpha) : width(width), height(height) {
-  // A 1080p frame is 33 MB: its fresh pages are faulted in from every core first (core/pages.h),
-  // or the zero fill below would fault them one after another.
-  AssignPrefaulted(&rgba, static_cast<size_t>(pixel_count()) * kChannels, 0.0f);
+  rgba.assign(static_cast<size_t>(pixel_count()) * kChannels, 0.0f);
   // The vector is zero already: a (positive) zero alpha needs no second pass.
   if (alpha != 0.0f || std::signbit(alpha)) {
     for (int64_t i = 0; i < pixel_count(); ++i) rgba[i * kChannels + 3] = alpha;

@@ -11,7 +11,6 @@
 #include "core/colour.h"
 #include "core/errors.h"
 #include "core/format.h"
-#include "core/pages.h"
 #include "hdr/bloom.h"
 #include "hdr/exposure.h"
 #include "hdr/simd.h"
@@ -89,7 +88,7 @@ Image8 EncodeDisplay(const Image& image, const TransferCurve& transfer) {
   Image8 display;
   display.width = image.width;
   display.height = image.height;
-  AssignPrefaulted(&display.rgb, image.pixel_count() * 3);  // fresh pages: from every core
+  display.rgb.resize(image.pixel_count() * 3);
   tbb::parallel_for(0, image.height, [&](int y) {
     const float* in = image.pixel(0, y);
     uint8_t* out = display.rgb.data() + int64_t{y} * image.width * 3;
@@ -318,7 +317,7 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   Image8& display = result.display;
   display.width = width;
   display.height = image.height;
-  AssignPrefaulted(&display.rgb, image.pixel_count() * 3);  // fresh pages: from every core
+  display.rgb.resize(image.pixel_count() * 3);
   const int tasks = (image.height + kRowsPerTask - 1) / kRowsPerTask;
   [[maybe_unused]] const bool avx2 = HdrAvx2Enabled();
   ForToneOperator(result.mapping, [&](const auto& map) {

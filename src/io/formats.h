@@ -43,6 +43,11 @@ struct FileFormat {
   bool (*sniff)(std::string_view head, int64_t file_size) = nullptr;
   Measurement (*read)(const std::string& path, const ReadOptions& options) = nullptr;
   WriteReport (*write)(const Measurement& measurement, const std::string& path) = nullptr;
+  // The file is a fixed table of cells of its own (MERL): its writer fills every cell from the
+  // measurement's evaluator, so a model can be written without a schedule.
+  bool fixed_grid = false;
+  // Copies a valid file of this format unchanged (validated on the way), or nullptr.
+  void (*copy)(const std::string& from, const std::string& to) = nullptr;
 };
 
 const std::vector<FileFormat>& FileFormats();
@@ -66,6 +71,7 @@ bool SniffNativeCsv(std::string_view head, int64_t file_size);
 Measurement ReadMerl(const std::string& path, const ReadOptions& options);
 WriteReport WriteMerl(const Measurement& measurement, const std::string& path);
 bool SniffMerl(std::string_view head, int64_t file_size);
+void CopyMerl(const std::string& from, const std::string& to);
 
 Measurement ReadAstm(const std::string& path, const ReadOptions& options);
 bool SniffAstm(std::string_view head, int64_t file_size);

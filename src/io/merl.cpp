@@ -11,7 +11,6 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
-#include "core/pages.h"
 #include "core/text.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
@@ -113,8 +112,7 @@ MerlTable::MerlTable() : owned_(3 * kCells, -1.0) {}
 
 void MerlTable::Detach() {
   if (file_ == nullptr) return;
-  std::vector<double> values;
-  AssignPrefaulted(&values, 3 * kCells);
+  std::vector<double> values(3 * kCells);
   std::memcpy(values.data(), file_->data() + kHeaderBytes, values.size() * sizeof(double));
   owned_ = std::move(values);
   file_ = nullptr;
@@ -353,8 +351,7 @@ void MerlTable::MakeSamples(int64_t begin, int64_t end, Sample* out) const {
 
 Measurement MerlTable::ToMeasurement() const {
   Measurement measurement;
-  // Faulted in from both cores first: sizing it would touch 117 MB of fresh pages on one.
-  AssignPrefaulted(&measurement.samples, kCells);
+  measurement.samples.resize(kCells);
   tbb::parallel_for(0, kThetaHalfBins, [&](int theta_h_index) {
     const int64_t first = theta_h_index * kRowCells;
     MakeSamples(first, first + kRowCells, measurement.samples.data() + first);
@@ -414,6 +411,8 @@ bool SniffMerl(std::string_view head, int64_t file_size) {
   std::memcpy(dims, head.data(), sizeof(dims));
   return dims[0] == kDimensions[0] && dims[1] == kDimensions[1] && dims[2] == kDimensions[2];
 }
+
+void CopyMerl(const std::string& from, const std::string& to) { MerlTable::Read(from).Write(to); }
 
 Measurement ReadMerl(const std::string& path, const ReadOptions& options) {
   MerlTable table = MerlTable::Read(path);

@@ -6,7 +6,6 @@
 
 #include "core/angles.h"
 #include "core/errors.h"
-#include "core/pages.h"
 #include "core/text.h"
 #include "hdr/image_files.h"
 
@@ -22,10 +21,7 @@ Environment::Environment(Image image)
     throw UsageError("environment of " + std::to_string(width) + "x" + std::to_string(height) +
                      " pixels: at most 2^32 pixels are supported");
   }
-  // The tables below are fresh memory (21 MB for a 1k map), filled on one thread: their pages
-  // are faulted in from every core first (core/pages.h).
-  std::vector<double> weight;
-  AssignPrefaulted(&weight, static_cast<size_t>(count));
+  std::vector<double> weight(static_cast<size_t>(count));
   double total = 0.0;
   for (int r = 0; r < height; ++r) {
     const double sin_theta = std::sin(kPi * (r + 0.5) / height);
@@ -44,11 +40,6 @@ Environment::Environment(Image image)
       total += sin_theta * width;
     }
   }
-  // Draws and lookups land anywhere in the table (24 bytes a pixel: 12.6 MB for a 1k map), so
-  // with 4 KiB pages nearly every one also misses the TLB; huge pages (when the system has them)
-  // cover it with a few entries. The values are the same.
-  ReserveHugePages(&texels_, static_cast<size_t>(count));
-  PrefaultPages(texels_.data(), texels_.capacity() * sizeof(Texel));
   texels_.resize(count);
   for (int64_t i = 0; i < count; ++i) {
     for (int c = 0; c < 3; ++c) texels_[i].rgb[c] = image.rgba[i * Image::kChannels + c];
@@ -58,8 +49,7 @@ Environment::Environment(Image image)
 
   // Vose's construction: scaled probabilities count * p_i split into those below 1 ("small")
   // and the rest; each small entry is topped up from a large one, which becomes its alias.
-  std::vector<double> scaled;
-  AssignPrefaulted(&scaled, static_cast<size_t>(count));
+  std::vector<double> scaled(static_cast<size_t>(count));
   std::vector<uint32_t> small, large;
   for (int64_t i = 0; i < count; ++i) {
     scaled[i] = weight[i] / total * count;
