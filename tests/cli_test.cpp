@@ -32,6 +32,35 @@ TEST(Cli, UnknownCommandIsUsageError) {
   EXPECT_EQ(RunBrdf("info").exit_status, 2);  // FILE is required
 }
 
+TEST(Cli, UnknownCommandIsNamedWithTheNearestSuggestion) {
+  const testing::CommandResult typo = RunBrdf("fitt x");
+  EXPECT_EQ(typo.exit_status, 2);
+  EXPECT_EQ(typo.err,
+            "brdf: unknown command 'fitt' (did you mean 'fit'?); run 'brdf --help' for "
+            "the list of commands\n");
+  // Nothing near: named, with no guess.
+  const testing::CommandResult far = RunBrdf("frobnicate");
+  EXPECT_NE(far.err.find("unknown command 'frobnicate'"), std::string::npos) << far.err;
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
+  // A known command is never called unknown.
+  EXPECT_EQ(RunBrdf("info").err.find("unknown command"), std::string::npos);
+}
+
+TEST(Cli, ParserErrorsArePrefixedAndNameTheCommand) {
+  const testing::CommandResult missing = RunBrdf("info");
+  EXPECT_EQ(missing.exit_status, 2);
+  EXPECT_EQ(missing.err, "brdf: info: FILE is required (run 'brdf info --help')\n");
+  const testing::CommandResult range = RunBrdf("plan --model ggx --budget 0 --out plan.csv");
+  EXPECT_EQ(range.exit_status, 2);
+  EXPECT_EQ(range.err.rfind("brdf: plan: --budget: ", 0), 0u) << range.err;
+  const testing::CommandResult none = RunBrdf("");
+  EXPECT_EQ(none.err.rfind("brdf: ", 0), 0u) << none.err;
+  // --help still succeeds and prints no error.
+  const testing::CommandResult help = RunBrdf("fit --help");
+  EXPECT_EQ(help.exit_status, 0);
+  EXPECT_EQ(help.err.find("brdf: "), std::string::npos) << help.err;
+}
+
 TEST(Cli, InfoJsonOnRealCornellFile) {
   const testing::CommandResult result =
       RunBrdf("info --json '" + DataPath("cornell-astm/cayman.astm") + "'");
