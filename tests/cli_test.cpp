@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -216,6 +217,67 @@ TEST(Cli, QuickDemoSimulatesFitsAndReports) {
   EXPECT_GE(images, 5);
   // And a browser shows them.
   ExpectReportLoadsInBrowser(dir.path());
+}
+
+}  // namespace
+}  // namespace brdf
+
+namespace brdf {
+namespace {
+
+TEST(Cli, BatchTakesADirectoryAsItsReadableFilesSorted) {
+  ScratchDir dir;
+  const std::string in = dir.File("in");
+  std::filesystem::create_directories(in);
+  std::filesystem::copy_file(DataPath("zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf"),
+                             in + "/b.bsdf");
+  std::filesystem::copy_file(DataPath("cornell-astm/cayman.astm"), in + "/a.astm");
+  std::ofstream(in + "/notes.txt") << "not a measurement\n";
+  std::ofstream(in + "/.hidden.astm") << "ignored\n";
+  const testing::CommandResult result =
+      RunBrdf("batch '" + in + "' --model lambert --out '" + dir.File("out") + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  // The unreadable file is named and passed over; the hidden one is not looked at.
+  EXPECT_NE(result.err.find("skipped 1 files in no format brdf reads: " + in + "/notes.txt"),
+            std::string::npos)
+      << result.err;
+  EXPECT_EQ(result.err.find(".hidden"), std::string::npos) << result.err;
+  std::ifstream table(dir.File("out/table.csv"));
+  std::string header, first, second, extra;
+  std::getline(table, header);
+  std::getline(table, first);
+  std::getline(table, second);
+  EXPECT_EQ(first.rfind(in + "/a.astm,a.json,ok,lambert,", 0), 0u) << first;
+  EXPECT_EQ(second.rfind(in + "/b.bsdf,b.json,ok,lambert,", 0), 0u) << second;
+  EXPECT_FALSE(std::getline(table, extra));
+  // A directory with nothing readable is bad input, named.
+  const std::string empty = dir.File("empty");
+  std::filesystem::create_directories(empty);
+  std::ofstream(empty + "/notes.txt") << "nothing\n";
+  const testing::CommandResult none = RunBrdf("batch '" + empty + "' --model lambert");
+  EXPECT_EQ(none.exit_status, 2);
+  EXPECT_NE(none.err.find(empty + ": no file in this directory"), std::string::npos) << none.err;
+}
+
+TEST(Cli, FitAndExportQuietPrintNothingOnSuccess) {
+  ScratchDir dir;
+  const std::string astm = "'" + DataPath("cornell-astm/cayman.astm") + "'";
+  const std::string fit_json = dir.File("fit.json");
+  const testing::CommandResult loud = RunBrdf("fit " + astm + " --model lambert");
+  EXPECT_NE(loud.out.find("model       lambert"), std::string::npos) << loud.out;
+  const testing::CommandResult quiet =
+      RunBrdf("fit " + astm + " --model lambert --quiet --out '" + fit_json + "'");
+  EXPECT_EQ(quiet.exit_status, 0) << quiet.err;
+  EXPECT_EQ(quiet.out, "");
+  EXPECT_EQ(quiet.err, "");
+  EXPECT_TRUE(std::filesystem::exists(fit_json));  // the report is still written
+  const std::string xml = dir.File("m.xml");
+  const testing::CommandResult exported =
+      RunBrdf("export '" + fit_json + "' --to mitsuba3 --quiet --out '" + xml + "'");
+  EXPECT_EQ(exported.exit_status, 0) << exported.err;
+  EXPECT_EQ(exported.out, "");
+  EXPECT_TRUE(std::filesystem::exists(xml));
+  EXPECT_NE(RunBrdf("export '" + fit_json + "' --to mitsuba3 --out '" + xml + "'").out, "");
 }
 
 }  // namespace
