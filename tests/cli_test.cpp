@@ -200,6 +200,10 @@ TEST(Cli, QuickDemoSimulatesFitsAndReports) {
   }
   const std::string html = testing::ReadFileText(dir.File("report.html"));
   EXPECT_NE(html.find("<h1>brdfkit demo report</h1>"), std::string::npos);
+  // Every picture links to itself at full size.
+  EXPECT_NE(html.find("<a href=\"images/matte-slices.png\"><img src=\"images/matte-slices.png\""),
+            std::string::npos);
+  EXPECT_EQ(html.find("<figure><img"), std::string::npos);
   // Every dataset has its plane-of-incidence slice chart.
   for (const nlohmann::json& dataset : json["datasets"]) {
     const std::string slices = "images/" + dataset["name"].get<std::string>() + "-slices.png";
