@@ -10,6 +10,8 @@
 namespace brdf::fitters {
 namespace {
 
+constexpr int kShownDigits = 7;
+
 nlohmann::json RgbJson(const Rgb& rgb) { return {rgb[0], rgb[1], rgb[2]}; }
 
 // A parameter as JSON: [r, g, b] or a number; NaN (not available) becomes null.
@@ -108,7 +110,9 @@ nlohmann::json FitReportJson(const FitResult& fit, const std::string& source,
 void PrintFitReport(std::ostream& out, const FitResult& fit, const std::string& source,
                     const Selection* selection) {
   out << "source      " << source << "\n";
-  out << "model       " << fit.model.name() << "   (" << fit.model.ToString() << ")\n";
+  // Seven significant digits: as many as a person reads, and the string reproduces the fit to
+  // them (brdf render/energy accept it as it is printed).
+  out << "model       " << fit.model.name() << "   (" << fit.model.ToString(kShownDigits) << ")\n";
   if (selection != nullptr) {
     out << "selection   " << selection->reason << "\n";
     for (const CandidateScore& candidate : selection->candidates) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -30,6 +31,35 @@ TEST(Cli, HelpDocumentsEveryCommand) {
 TEST(Cli, UnknownCommandIsUsageError) {
   EXPECT_EQ(RunBrdf("frobnicate").exit_status, 2);
   EXPECT_EQ(RunBrdf("info").exit_status, 2);  // FILE is required
+}
+
+TEST(Cli, UnknownCommandIsNamedWithTheNearestSuggestion) {
+  const testing::CommandResult typo = RunBrdf("fitt x");
+  EXPECT_EQ(typo.exit_status, 2);
+  EXPECT_EQ(typo.err,
+            "brdf: unknown command 'fitt' (did you mean 'fit'?); run 'brdf --help' for "
+            "the list of commands\n");
+  // Nothing near: named, with no guess.
+  const testing::CommandResult far = RunBrdf("frobnicate");
+  EXPECT_NE(far.err.find("unknown command 'frobnicate'"), std::string::npos) << far.err;
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
+  // A known command is never called unknown.
+  EXPECT_EQ(RunBrdf("info").err.find("unknown command"), std::string::npos);
+}
+
+TEST(Cli, ParserErrorsArePrefixedAndNameTheCommand) {
+  const testing::CommandResult missing = RunBrdf("info");
+  EXPECT_EQ(missing.exit_status, 2);
+  EXPECT_EQ(missing.err, "brdf: info: FILE is required (run 'brdf info --help')\n");
+  const testing::CommandResult range = RunBrdf("plan --model ggx --budget 0 --out plan.csv");
+  EXPECT_EQ(range.exit_status, 2);
+  EXPECT_EQ(range.err.rfind("brdf: plan: --budget: ", 0), 0u) << range.err;
+  const testing::CommandResult none = RunBrdf("");
+  EXPECT_EQ(none.err.rfind("brdf: ", 0), 0u) << none.err;
+  // --help still succeeds and prints no error.
+  const testing::CommandResult help = RunBrdf("fit --help");
+  EXPECT_EQ(help.exit_status, 0);
+  EXPECT_EQ(help.err.find("brdf: "), std::string::npos) << help.err;
 }
 
 TEST(Cli, InfoJsonOnRealCornellFile) {
@@ -170,6 +200,10 @@ TEST(Cli, QuickDemoSimulatesFitsAndReports) {
   }
   const std::string html = testing::ReadFileText(dir.File("report.html"));
   EXPECT_NE(html.find("<h1>brdfkit demo report</h1>"), std::string::npos);
+  // Every picture links to itself at full size.
+  EXPECT_NE(html.find("<a href=\"images/matte-slices.png\"><img src=\"images/matte-slices.png\""),
+            std::string::npos);
+  EXPECT_EQ(html.find("<figure><img"), std::string::npos);
   // Every dataset has its plane-of-incidence slice chart.
   for (const nlohmann::json& dataset : json["datasets"]) {
     const std::string slices = "images/" + dataset["name"].get<std::string>() + "-slices.png";
@@ -187,6 +221,67 @@ TEST(Cli, QuickDemoSimulatesFitsAndReports) {
   EXPECT_GE(images, 5);
   // And a browser shows them.
   ExpectReportLoadsInBrowser(dir.path());
+}
+
+}  // namespace
+}  // namespace brdf
+
+namespace brdf {
+namespace {
+
+TEST(Cli, BatchTakesADirectoryAsItsReadableFilesSorted) {
+  ScratchDir dir;
+  const std::string in = dir.File("in");
+  std::filesystem::create_directories(in);
+  std::filesystem::copy_file(DataPath("zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf"),
+                             in + "/b.bsdf");
+  std::filesystem::copy_file(DataPath("cornell-astm/cayman.astm"), in + "/a.astm");
+  std::ofstream(in + "/notes.txt") << "not a measurement\n";
+  std::ofstream(in + "/.hidden.astm") << "ignored\n";
+  const testing::CommandResult result =
+      RunBrdf("batch '" + in + "' --model lambert --out '" + dir.File("out") + "'");
+  ASSERT_EQ(result.exit_status, 0) << result.err;
+  // The unreadable file is named and passed over; the hidden one is not looked at.
+  EXPECT_NE(result.err.find("skipped 1 files in no format brdf reads: " + in + "/notes.txt"),
+            std::string::npos)
+      << result.err;
+  EXPECT_EQ(result.err.find(".hidden"), std::string::npos) << result.err;
+  std::ifstream table(dir.File("out/table.csv"));
+  std::string header, first, second, extra;
+  std::getline(table, header);
+  std::getline(table, first);
+  std::getline(table, second);
+  EXPECT_EQ(first.rfind(in + "/a.astm,a.json,ok,lambert,", 0), 0u) << first;
+  EXPECT_EQ(second.rfind(in + "/b.bsdf,b.json,ok,lambert,", 0), 0u) << second;
+  EXPECT_FALSE(std::getline(table, extra));
+  // A directory with nothing readable is bad input, named.
+  const std::string empty = dir.File("empty");
+  std::filesystem::create_directories(empty);
+  std::ofstream(empty + "/notes.txt") << "nothing\n";
+  const testing::CommandResult none = RunBrdf("batch '" + empty + "' --model lambert");
+  EXPECT_EQ(none.exit_status, 2);
+  EXPECT_NE(none.err.find(empty + ": no file in this directory"), std::string::npos) << none.err;
+}
+
+TEST(Cli, FitAndExportQuietPrintNothingOnSuccess) {
+  ScratchDir dir;
+  const std::string astm = "'" + DataPath("cornell-astm/cayman.astm") + "'";
+  const std::string fit_json = dir.File("fit.json");
+  const testing::CommandResult loud = RunBrdf("fit " + astm + " --model lambert");
+  EXPECT_NE(loud.out.find("model       lambert"), std::string::npos) << loud.out;
+  const testing::CommandResult quiet =
+      RunBrdf("fit " + astm + " --model lambert --quiet --out '" + fit_json + "'");
+  EXPECT_EQ(quiet.exit_status, 0) << quiet.err;
+  EXPECT_EQ(quiet.out, "");
+  EXPECT_EQ(quiet.err, "");
+  EXPECT_TRUE(std::filesystem::exists(fit_json));  // the report is still written
+  const std::string xml = dir.File("m.xml");
+  const testing::CommandResult exported =
+      RunBrdf("export '" + fit_json + "' --to mitsuba3 --quiet --out '" + xml + "'");
+  EXPECT_EQ(exported.exit_status, 0) << exported.err;
+  EXPECT_EQ(exported.out, "");
+  EXPECT_TRUE(std::filesystem::exists(xml));
+  EXPECT_NE(RunBrdf("export '" + fit_json + "' --to mitsuba3 --out '" + xml + "'").out, "");
 }
 
 }  // namespace

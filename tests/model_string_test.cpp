@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/angles.h"
 #include "core/errors.h"
 #include "models/registry.h"
 
@@ -195,6 +196,44 @@ TEST(ModelString, ValuesAtTheirBoundReadAsTheBoundForPeople) {
   EXPECT_TRUE(rho_d.AtBound(0.0));
   EXPECT_FALSE(rho_d.AtBound(1e-7));
   EXPECT_EQ(rho_d.Displayed(-1e-12), 0.0);
+}
+
+}  // namespace
+}  // namespace brdf
+
+namespace brdf {
+namespace {
+
+TEST(ModelString, ChannelsEqualToTheDigitsShownAreOneGreyValue) {
+  // A monochrome file fitted per channel: the three channels differ in the last bit only.
+  const Model model =
+      ParseModel("lambert:rho_d=0.2699260473095003,0.2699260473095004,0.2699260473095003");
+  EXPECT_EQ(model.ToString(7), "lambert:rho_d=0.269926");
+  // The full form keeps every bit, so channels that differ are written out.
+  EXPECT_EQ(ParseModel(model.ToString()).params(), model.params());
+  EXPECT_NE(model.ToString().find(','), std::string::npos);
+  // Channels that differ at the digits shown stay three numbers.
+  EXPECT_EQ(ParseModel("lambert:rho_d=0.3,0.1,0.1").ToString(7), "lambert:rho_d=0.3,0.1,0.1");
+}
+
+TEST(ModelString, PrintedStringReproducesTheFitToTheDigitsShown) {
+  // A MERL round trip's fit: rho_d 0.1 by way of 0.09999999999999998, and a bound value.
+  const Model fit = ParseModel(
+      "ggx:rho_d=0.3,0.09999999999999998,0.1234567890123:f0=2.9748775049246083e-18,0.0220544715,"
+      "0.11169612:alpha=0.16768361234");
+  const std::string printed = fit.ToString(7);
+  EXPECT_EQ(printed, "ggx:rho_d=0.3,0.1,0.1234568:f0=0,0.02205447,0.1116961:alpha=0.1676836");
+  const Model reread = ParseModel(printed);
+  for (size_t k = 0; k < fit.params().size(); ++k) {
+    EXPECT_NEAR(reread.params()[k], fit.params()[k], 5e-7 * std::max(1e-3, fit.params()[k])) << k;
+  }
+  // The BRDF itself agrees to about the digits shown, in and out of the highlight.
+  const Vec3 wi = SphericalDirection(0.35, 0.2);
+  for (const Vec3& wo : {SphericalDirection(0.35, 0.2 + kPi), SphericalDirection(0.9, 2.0)}) {
+    const Rgb a = fit.Eval(wi, wo);
+    const Rgb b = reread.Eval(wi, wo);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(b[c], a[c], 2e-6 * a[c]) << c;
+  }
 }
 
 }  // namespace

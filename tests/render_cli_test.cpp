@@ -138,3 +138,51 @@ TEST(RenderCli, VersusSheetShowsTheRelativeError) {
 
 }  // namespace
 }  // namespace brdf
+
+namespace brdf {
+namespace {
+
+TEST(RenderCli, OutputNamesMustMatchTheFormatWritten) {
+  ScratchDir dir;
+  for (const std::string& out : {dir.File("sphere.jpg"), dir.File("sphere")}) {
+    const testing::CommandResult result = RunBrdf("render lambert --size 16 --out '" + out + "'");
+    EXPECT_EQ(result.exit_status, 2) << out;
+    EXPECT_NE(result.err.find(out + ": the file written is PNG; name it *.png"), std::string::npos)
+        << result.err;
+  }
+  const testing::CommandResult exr =
+      RunBrdf("render lambert --size 16 --exr '" + dir.File("s.png") + "' --out '" +
+              dir.File("s.png") + "'");
+  EXPECT_EQ(exr.exit_status, 2);
+  EXPECT_NE(exr.err.find("--exr"), std::string::npos) << exr.err;
+  EXPECT_EQ(dir.CountEntries(), 0);  // nothing written
+  // Any case of the right extension is fine, and so is tonemap's.
+  EXPECT_EQ(
+      RunBrdf("render lambert --size 16 --quiet --out '" + dir.File("S.PNG") + "'").exit_status, 0);
+  const testing::CommandResult tonemap = RunBrdf("tonemap '" + DataPath("hdr/memorial.hdr") +
+                                                 "' --out '" + dir.File("memorial.jpg") + "'");
+  EXPECT_EQ(tonemap.exit_status, 2);
+  EXPECT_NE(tonemap.err.find("name it *.png"), std::string::npos) << tonemap.err;
+}
+
+TEST(RenderCli, WarnsOnAMaterialThatCreatesEnergyAndOnlyThen) {
+  ScratchDir dir;
+  const std::string out = " --size 16 --spp 2 --quiet --out '" + dir.File("s.png") + "'";
+  // Diffuse albedo 1.5 reflects half as much again as it receives.
+  const testing::CommandResult bright = RunBrdf("render 'ggx:rho_d=1.5:f0=0.04:alpha=0.2'" + out);
+  EXPECT_EQ(bright.exit_status, 0) << bright.err;
+  EXPECT_NE(bright.err.find("reflects more light than it receives"), std::string::npos)
+      << bright.err;
+  // The same against a conserving one, in either place of --vs.
+  const testing::CommandResult versus =
+      RunBrdf("render 'ggx:rho_d=0.5:f0=0.04:alpha=0.2' --vs 'lambert:rho_d=1.2'" + out);
+  EXPECT_NE(versus.err.find("lambert:rho_d=1.2 reflects more"), std::string::npos) << versus.err;
+  EXPECT_EQ(versus.err.find("ggx:rho_d=0.5:f0=0.04:alpha=0.2 reflects"), std::string::npos);
+  // A conserving material: silent.
+  const testing::CommandResult fine = RunBrdf("render 'ggx:rho_d=0.5:f0=0.04:alpha=0.2'" + out);
+  EXPECT_EQ(fine.exit_status, 0);
+  EXPECT_EQ(fine.err, "");
+}
+
+}  // namespace
+}  // namespace brdf

@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <set>
 
+#include "cli/chart.h"
 #include "core/angles.h"
 #include "core/colour.h"
 #include "core/errors.h"
@@ -127,6 +128,46 @@ TEST(SlicePlot, FitPlotWritesTheChartOfARealFile) {
   const cv::Mat image = cv::imread(png);
   ASSERT_FALSE(image.empty());
   EXPECT_EQ(scratch.CountEntries(), 1);  // no temporary left beside it
+}
+
+}  // namespace
+}  // namespace brdf::cli
+
+namespace brdf::cli {
+namespace {
+
+int64_t PixelsOfColour(const cv::Mat& image, const cv::Scalar& colour) {
+  int64_t count = 0;
+  for (int y = 0; y < image.rows; ++y) {
+    for (int x = 0; x < image.cols; ++x) {
+      const cv::Vec3b pixel = image.at<cv::Vec3b>(y, x);
+      count += pixel[0] == colour[0] && pixel[1] == colour[1] && pixel[2] == colour[2];
+    }
+  }
+  return count;
+}
+
+// Two models that coincide (blinn-phong and blinn-phong-exact on this lobe) must both show:
+// the second curve is dashed, so the first one's colour stays visible through its gaps.
+TEST(SlicePlot, ACurveUnderAnIdenticalOneStaysVisible) {
+  const Measurement measurement =
+      MeasureIdeal("model:blinn-phong:rho_d=0.1:rho_s=0.5:m=200", "inplane:step=10");
+  const Model model = ParseModel("blinn-phong:rho_d=0.1:rho_s=0.5:m=200");
+  const SliceCurve curve{"blinn-phong",
+                         [&](const Vec3& wi, const Vec3& wo) { return model.Eval(wi, wo); }};
+  const brdf::testing::ScratchDir scratch;
+  WriteSlicePlot(measurement, {curve}, "alone", scratch.File("alone.png"));
+  WriteSlicePlot(measurement, {curve, curve}, "both", scratch.File("both.png"));
+  const cv::Mat alone = cv::imread(scratch.File("alone.png"));
+  const cv::Mat both = cv::imread(scratch.File("both.png"));
+  const int64_t first_alone = PixelsOfColour(alone, chart::kCurveColours[0]);
+  const int64_t first_under = PixelsOfColour(both, chart::kCurveColours[0]);
+  const int64_t second = PixelsOfColour(both, chart::kCurveColours[1]);
+  ASSERT_GT(first_alone, 1000);
+  // About half of the first curve shows through the gaps, and the second is drawn too.
+  EXPECT_GT(first_under, first_alone / 4) << first_under << " of " << first_alone;
+  EXPECT_LT(first_under, first_alone);
+  EXPECT_GT(second, first_alone / 4);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 // the job exits 2 (bad input; 3 when only fits failed or did not converge).
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -88,6 +89,41 @@ std::vector<std::string> ReportNames(const std::vector<std::string>& files) {
   return reports;
 }
 
+// The inputs with each directory replaced by its files that a reader recognises, sorted by name
+// (hidden files and subdirectories left out); the files passed over are named in `skipped`.
+std::vector<std::string> ExpandDirectories(const std::vector<std::string>& inputs,
+                                           std::vector<std::string>* skipped) {
+  std::vector<std::string> files;
+  for (const std::string& input : inputs) {
+    std::error_code error;
+    if (!fs::is_directory(input, error)) {
+      files.push_back(input);
+      continue;
+    }
+    std::vector<std::string> entries;
+    for (const fs::directory_entry& entry : fs::directory_iterator(input, error)) {
+      const std::string name = entry.path().filename().string();
+      if (name.empty() || name[0] == '.' || !entry.is_regular_file()) continue;
+      entries.push_back(entry.path().string());
+    }
+    if (error) throw InputError(input, "cannot list the directory: " + error.message());
+    std::sort(entries.begin(), entries.end());
+    size_t readable = 0;
+    for (const std::string& entry : entries) {
+      try {
+        DetectFormat(entry);
+        files.push_back(entry);
+        ++readable;
+      } catch (const InputError&) {
+        skipped->push_back(entry);
+      }
+    }
+    if (readable == 0)
+      throw InputError(input, "no file in this directory is in a format brdf reads");
+  }
+  return files;
+}
+
 struct BatchOptions {
   std::vector<std::string> files;
   FitArguments fit;
@@ -159,7 +195,9 @@ Command AddBatchCommand(CLI::App& parent) {
   auto options = std::make_shared<BatchOptions>();
   CLI::App* app = parent.add_subcommand(
       "batch", "Fit many measurement files: one fit report per file and one CSV table");
-  app->add_option("FILE", options->files, "measurement files (any format brdf info reads)")
+  app->add_option("FILE", options->files,
+                  "measurement files (any format brdf info reads), or directories: their files in "
+                  "a format brdf reads, sorted by name")
       ->required();
   AddFitOptions(app, &options->fit);
   app->add_option("--threads", options->threads,
@@ -193,6 +231,14 @@ Command AddBatchCommand(CLI::App& parent) {
             const fitters::FitOptions fit_options =
                 options->fit.ToFitOptions(files_at_once ? 1 : options->threads);
             options->fit.ToReadOptions();  // a bad illuminant fails before any file is read
+            std::vector<std::string> skipped;
+            options->files = ExpandDirectories(options->files, &skipped);
+            if (!skipped.empty() && !options->quiet && ranks::IsRoot()) {
+              std::cerr << "brdf batch: skipped " << skipped.size()
+                        << " files in no format brdf reads:";
+              for (const std::string& file : skipped) std::cerr << " " << file;
+              std::cerr << "\n";
+            }
             const std::vector<std::string> report_names = ReportNames(options->files);
             if (!options->out.empty() && ranks::IsRoot()) {
               std::error_code error;

@@ -22,7 +22,7 @@ constexpr double kFallbackGridStepDeg = 5.0;
 Command AddExportCommand(CLI::App& parent) {
   struct Options {
     std::string fit, to, out, samples, illuminant = "D65";
-    bool json = false;
+    bool json = false, quiet = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* app = parent.add_subcommand(
@@ -41,6 +41,7 @@ Command AddExportCommand(CLI::App& parent) {
   app->add_option("--illuminant", options->illuminant, "for spectral files: D65 or E")
       ->capture_default_str();
   app->add_flag("--json", options->json, "print the export report as JSON instead of the lines");
+  app->add_flag("--quiet", options->quiet, "print nothing on success");
 
   return {app, [options]() {
             const exporters::Target target = exporters::ParseTarget(options->to);
@@ -59,6 +60,7 @@ Command AddExportCommand(CLI::App& parent) {
             }
             const exporters::ExportedMaterial material = exporters::ExportMaterial(request, target);
             WriteFileAtomically(options->out, [&](std::ostream& out) { out << material.text; });
+            if (options->quiet) return 0;
             if (options->json) {
               std::cout << exporters::ExportJson(material, options->fit, options->out,
                                                  request.samples.origin)

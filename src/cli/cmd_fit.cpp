@@ -21,7 +21,7 @@ Command AddFitCommand(CLI::App& parent) {
     std::string path, out, plot;
     FitArguments fit;
     int threads = 0;
-    bool json = false;
+    bool json = false, quiet = false;
   };
   auto options = std::make_shared<Options>();
   CLI::App* app = parent.add_subcommand("fit", "Fit " + ModelNames() + " to a measurement (Ceres)");
@@ -33,6 +33,9 @@ Command AddFitCommand(CLI::App& parent) {
       ->capture_default_str();
   app->add_option("--out", options->out, "write the JSON fit report here");
   app->add_flag("--json", options->json, "print the JSON report instead of the table");
+  app->add_flag("--quiet", options->quiet,
+                "print nothing on success (the report still goes to --out); errors and a fit "
+                "that did not converge are still reported");
   app->add_option("--plot", options->plot,
                   "write the plane-of-incidence slice chart here (PNG): the in-plane samples "
                   "(+- sigma) and the fitted model, one panel per incidence, log scale");
@@ -59,9 +62,9 @@ Command AddFitCommand(CLI::App& parent) {
                     [&model](const Vec3& wi, const Vec3& wo) { return model.Eval(wi, wo); }}},
                   "plane of incidence: " + options->path, options->plot);
             }
-            if (options->json) {
+            if (options->json && !options->quiet) {
               std::cout << report.dump(2) << "\n";
-            } else {
+            } else if (!options->quiet) {
               fitters::PrintFitReport(std::cout, fit, options->path, chosen);
             }
             if (!fit.converged) {

@@ -13,8 +13,11 @@
 #include "core/errors.h"
 #include "core/format.h"
 #include "core/progress.h"
+#include "core/text.h"
+#include "energy/albedo.h"
 #include "hdr/image_files.h"
 #include "hdr/pipeline.h"
+#include "models/model_source.h"
 #include "render/comparison_sheet.h"
 #include "render/scene_lighting.h"
 #include "render/sphere.h"
@@ -28,6 +31,21 @@ std::string PresetHelp() {
     text += Format(" %s (%g lx, %s)", preset.name.c_str(), preset.lux, preset.description.c_str());
   }
   return text + "; default office when no light, preset or environment is given";
+}
+
+// A model that reflects more light than it receives renders brighter than any surface can be;
+// the same check as `brdf energy` (directional albedo over 0-89 deg, beyond twice its error).
+void WarnIfCreatingEnergy(const std::string& spec) {
+  if (!IsModelSpec(spec)) return;  // measured data are checked by `brdf energy FILE`
+  const AlbedoCurve curve = ModelAlbedoCurve(LoadModel(spec), AlbedoOptions());
+  if (curve.conserving()) return;
+  int channel = 0;
+  for (int c = 1; c < 3; ++c)
+    channel = curve.max_albedo[c] > curve.max_albedo[channel] ? c : channel;
+  std::cerr << "brdf render: warning: " << spec << " reflects more light than it receives (up to "
+            << FormatNumber(curve.max_albedo[channel], 4) << " times, at "
+            << FormatNumber(curve.theta_deg_at_max[channel], 3)
+            << " deg incidence): no real material does, so the preview is too bright\n";
 }
 
 }  // namespace
@@ -89,6 +107,8 @@ Command AddRenderCommand(CLI::App& parent) {
                                    static_cast<size_t>(options->threads));
             }
             options->render.Validate();
+            RequireExtension("--out", options->output, ".png");
+            if (!options->exr.empty()) RequireExtension("--exr", options->exr, ".exr");
             const ToneOptions tone = options->tone.Resolve();
             const ExrCompression exr_compression = ParseExrCompression(options->exr_compression);
             const ExrPixelType exr_type = ParseExrPixelType(options->exr_type);
@@ -100,6 +120,8 @@ Command AddRenderCommand(CLI::App& parent) {
             const std::unique_ptr<Material> material = LoadMaterial(options->material);
             const std::unique_ptr<Material> versus =
                 options->versus.empty() ? nullptr : LoadMaterial(options->versus);
+            WarnIfCreatingEnergy(options->material);
+            if (versus) WarnIfCreatingEnergy(options->versus);
 
             RenderResult render, render_versus;
             {

@@ -26,6 +26,7 @@ Command AddTonemapCommand(CLI::App& parent) {
   app->add_flag("--quiet", options->quiet, "print nothing on success");
 
   return {app, [options]() {
+            RequireExtension("--out", options->output, ".png");
             const ToneOptions tone = options->tone.Resolve();
             Image image = ReadHdrImage(options->input);
             const int64_t broken = ReplaceNonFinite(&image);

@@ -99,8 +99,10 @@ void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
   }
   out << "<div class=\"images\">\n";
   for (const DemoImage& image : dataset.images) {
-    out << "<figure><img src=\"" << Escape(image.path) << "\" alt=\"" << Escape(image.caption)
-        << "\"><figcaption>" << Escape(image.caption) << "</figcaption></figure>\n";
+    // Each picture links to itself at full size (the slice charts hold several panels).
+    out << "<figure><a href=\"" << Escape(image.path) << "\"><img src=\"" << Escape(image.path)
+        << "\" alt=\"" << Escape(image.caption) << "\"></a><figcaption>" << Escape(image.caption)
+        << " (click for full size)</figcaption></figure>\n";
   }
   out << "</div>\n";
 }
@@ -116,7 +118,7 @@ void WriteDemoReport(const DemoResult& result, const DemoOptions& options) {
           "td,th{border:1px solid #ccc;padding:0.25em 0.5em;text-align:left}\n"
           "tr.chosen{background:#eef6ee}\ncode{font-size:0.85em}\n"
           ".warning{color:#a40}\n.images{display:flex;flex-wrap:wrap;gap:1em}\n"
-          "figure{margin:0}\nfigure img{max-width:560px}\nfigcaption{font-size:0.85em}\n"
+          "figure{margin:0}\nfigure img{max-width:100%}\nfigcaption{font-size:0.85em}\n"
           "</style></head><body>\n<h1>brdfkit demo report</h1>\n";
   html << "<p>Simulated measurements from the virtual gonioreflectometer and the bundled real "
           "measurements, each fitted with every model (Ceres; energy conservation built into "

@@ -3,6 +3,7 @@
 // Under mpirun every rank runs this (DESIGN §11); see ReportError for who prints what.
 #include <malloc.h>
 
+#include <algorithm>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -38,6 +39,44 @@ int ReportError(const std::string& message, int status) {
   return status;
 }
 
+// The number of single-character edits (insert, delete, substitute) that turn `a` into `b`.
+size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// "unknown command 'fitt' (did you mean 'fit'?)" when the first word that is not an option names
+// no command; empty when it does (or there is none).
+std::string UnknownCommandMessage(const CLI::App& app, int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    const std::string word = argv[k];
+    if (word.empty() || word[0] == '-') continue;
+    std::string nearest;
+    size_t best = word.size();
+    for (const CLI::App* command : app.get_subcommands({})) {
+      if (command->get_name() == word) return {};
+      const size_t distance = EditDistance(word, command->get_name());
+      if (distance < best) best = distance, nearest = command->get_name();
+    }
+    std::string message = "unknown command '" + word + "'";
+    // A suggestion only when it is plausibly what was meant: at most half the word retyped.
+    if (!nearest.empty() && 2 * best <= word.size())
+      message += " (did you mean '" + nearest + "'?)";
+    return message + "; run 'brdf --help' for the list of commands";
+  }
+  return {};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -65,8 +104,17 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
-    const int status = app.exit(error);
-    return status == 0 ? 0 : 2;
+    // --help and --version print and succeed; every other parse error is one "brdf: " line.
+    if (error.get_exit_code() == 0) return app.exit(error);
+    std::string message = UnknownCommandMessage(app, argc, argv);
+    if (message.empty()) {
+      const std::vector<CLI::App*> parsed = app.get_subcommands();
+      message = parsed.empty() ? std::string(error.what())
+                               : parsed[0]->get_name() + ": " + error.what() + " (run 'brdf " +
+                                     parsed[0]->get_name() + " --help')";
+    }
+    std::cerr << "brdf: " << message << "\n";
+    return 2;
   }
 
   try {

@@ -25,6 +25,25 @@ constexpr double kMaxDecades = 6.0;
 // Model curves are sampled every half degree of theta_o.
 constexpr double kCurveStepDeg = 0.5;
 
+// Every second curve is dashed, so that two models that coincide (blinn-phong and
+// blinn-phong-exact away from grazing) both stay visible: the later, dashed one lets the
+// earlier one's colour show through its gaps. Dashes of kDashOn points, gaps of kDashOff.
+constexpr size_t kDashOn = 5, kDashOff = 7;
+bool Dashed(size_t curve) { return curve % 2 == 1; }
+
+void DrawCurve(cv::Mat* image, const std::vector<cv::Point>& line, const cv::Scalar& colour,
+               bool dashed) {
+  if (!dashed) {
+    cv::polylines(*image, line, false, colour, 2, cv::LINE_AA);
+    return;
+  }
+  for (size_t start = 0; start < line.size(); start += kDashOn + kDashOff) {
+    const size_t end = std::min(line.size(), start + kDashOn + 1);
+    const std::vector<cv::Point> dash(line.begin() + start, line.begin() + end);
+    cv::polylines(*image, dash, false, colour, 2, cv::LINE_AA);
+  }
+}
+
 double LuminanceSigma(const Rgb& sigma) {
   return std::sqrt(std::pow(kLuminanceWeights[0] * sigma[0], 2) +
                    std::pow(kLuminanceWeights[1] * sigma[1], 2) +
@@ -208,7 +227,7 @@ void WriteSlicePlot(const Measurement& measurement, const std::vector<SliceCurve
     for (size_t c = 0; c < curves.size(); ++c) {
       std::vector<cv::Point> line;
       for (const auto& [t, value] : curve_points[p][c]) line.push_back(area.At(t, value));
-      cv::polylines(image, line, false, chart::kCurveColours[c % 6], 2, cv::LINE_AA);
+      DrawCurve(&image, line, chart::kCurveColours[c % 6], Dashed(c));
     }
     for (const SlicePoint& point : panels[p].points) {
       if (!(point.luminance > 0)) continue;
@@ -228,8 +247,9 @@ void WriteSlicePlot(const Measurement& measurement, const std::vector<SliceCurve
   chart::Label(&image, "measured (+- sigma)", cv::Point(kPanelLeft + 10, legend_y), 0.45);
   int x = kPanelLeft + 190;
   for (size_t c = 0; c < curves.size(); ++c) {
-    cv::line(image, cv::Point(x, legend_y - 4), cv::Point(x + 25, legend_y - 4),
-             chart::kCurveColours[c % 6], 2, cv::LINE_AA);
+    std::vector<cv::Point> sample;
+    for (int dx = 0; dx <= 25; dx += 2) sample.emplace_back(x + dx, legend_y - 4);
+    DrawCurve(&image, sample, chart::kCurveColours[c % 6], Dashed(c));
     const std::string label = chart::Shorten(curves[c].label, 60);
     chart::Label(&image, label, cv::Point(x + 32, legend_y), 0.45);
     x += 45 + 9 * static_cast<int>(label.size());

@@ -1,6 +1,23 @@
 #include "cli/tone_options.h"
 
+#include <cctype>
+
+#include "core/errors.h"
+
 namespace brdf::cli {
+
+void RequireExtension(const std::string& option, const std::string& path,
+                      const std::string& extension) {
+  std::string tail =
+      path.size() >= extension.size() ? path.substr(path.size() - extension.size()) : std::string();
+  for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (tail != extension) {
+    std::string format = extension.substr(1);
+    for (char& c : format) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    throw UsageError(option + " " + path + ": the file written is " + format + "; name it *" +
+                     extension);
+  }
+}
 
 void AddToneOptions(CLI::App* app, ToneArguments* arguments) {
   app->add_option("--operator", arguments->tone_operator,

@@ -13,4 +13,9 @@ namespace brdf::cli {
 // --bloom-strength, --bloom-sigma and --gamma on `app`.
 void AddToneOptions(CLI::App* app, ToneArguments* arguments);
 
+// Throws UsageError unless `path` ends in `extension` (".png", any case): the command writes
+// that format only, and bytes of one format under another's name mislead every viewer.
+void RequireExtension(const std::string& option, const std::string& path,
+                      const std::string& extension);
+
 }  // namespace brdf::cli

@@ -1,5 +1,6 @@
 #include "models/model_string.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <set>
@@ -83,17 +84,19 @@ std::string Model::ToString(int significant) const {
   std::string text = info_->name;
   for (const ParamInfo& param : info_->params) {
     text += ":" + param.name + "=";
-    bool grey = true;
-    for (int c = 1; c < param.channels; ++c) {
-      grey = grey && params_[param.slot + c] == params_[param.slot];
-    }
-    const int shown = grey ? 1 : param.channels;
-    for (int c = 0; c < shown; ++c) {
+    // Rounded for people: a value at its bound reads as the bound (ParamInfo::Displayed), and
+    // channels that agree to the digits shown are written once (0.2699260473095003 and
+    // 0.2699260473095004 are one grey value to a reader).
+    std::vector<std::string> channels;
+    for (int c = 0; c < param.channels; ++c) {
       const double value = params_[param.slot + c];
-      // Rounded for people: a value at its bound reads as the bound (ParamInfo::Displayed).
-      text += (c ? "," : "") + (significant > 0 ? FormatNumber(param.Displayed(value), significant)
-                                                : FormatNumber(value));
+      channels.push_back(significant > 0 ? FormatNumber(param.Displayed(value), significant)
+                                         : FormatNumber(value));
     }
+    const bool grey =
+        std::all_of(channels.begin(), channels.end(),
+                    [&](const std::string& channel) { return channel == channels[0]; });
+    for (size_t c = 0; c < (grey ? 1 : channels.size()); ++c) text += (c ? "," : "") + channels[c];
   }
   return text;
 }

@@ -111,7 +111,7 @@ class ModelMaterial : public Material {
       return Material::EvalFloatBatch(wi_x, wi_y, wi_z, wo, count, f);
     eval_float_batch_(params_float_.data(), wi_x, wi_y, wi_z, wo, count, f);
   }
-  std::string Describe() const override { return model_.ToString(); }
+  std::string Describe() const override { return model_.ToString(7); }
   std::optional<LobeCoordinates> SpecularLobe() const override { return lobe_; }
 
  private:
