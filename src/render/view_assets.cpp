@@ -8,11 +8,15 @@
   asm(".section .rodata\n"            \
       ".global " #name                \
       "\n"                            \
+      ".hidden " #name                \
+      "\n"                            \
       ".balign 16\n" #name            \
       ":\n"                           \
       ".incbin \"" file               \
       "\"\n"                          \
-      ".global " #name "_end\n" #name \
+      ".global " #name                \
+      "_end\n"                        \
+      ".hidden " #name "_end\n" #name \
       "_end:\n"                       \
       ".byte 0\n"                     \
       ".previous\n")
