@@ -26,5 +26,6 @@ Command AddRenderCommand(CLI::App& parent);
 Command AddBatchCommand(CLI::App& parent);
 Command AddExportCommand(CLI::App& parent);
 Command AddPlanCommand(CLI::App& parent);
+Command AddViewCommand(CLI::App& parent);
 
 }  // namespace brdf::cli

@@ -29,6 +29,7 @@
 #include "render/environment.h"
 #include "render/lights.h"
 #include "render/sphere.h"
+#include "render/view_page.h"
 
 namespace brdf::cli {
 namespace {
@@ -228,6 +229,8 @@ void RenderSheets(const DemoOptions& options, const Environment& environment,
   const std::string fitted_spec = options.out_dir + "/" + dataset->fit_paths[dataset->chosen];
   const std::unique_ptr<Material> measured = LoadMaterial(measured_spec);
   const std::unique_ptr<Material> fitted = LoadMaterial(fitted_spec);
+  dataset->view_path = "views/" + dataset->name + ".html";
+  WriteViewPage({measured_spec, fitted_spec}, options.out_dir + "/" + dataset->view_path);
   RenderOptions render;
   render.size = options.quick ? 128 : 256;
   render.spp = options.quick ? 8 : 32;
@@ -276,7 +279,7 @@ DemoResult RunDemo(const DemoOptions& options) {
   DemoResult result;
   const std::vector<std::string> bundled = FindMeasurements(options.data_dir);
   if (bundled.empty()) throw UsageError(options.data_dir + ": no measurement files found");
-  for (const char* sub : {"measurements", "fits", "images", "exports"}) {
+  for (const char* sub : {"measurements", "fits", "images", "exports", "views"}) {
     std::error_code error;
     fs::create_directories(options.out_dir + "/" + sub, error);
     if (error) {

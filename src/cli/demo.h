@@ -63,6 +63,7 @@ struct DemoDataset {
   double truth_error = -1;  // max relative parameter error of the truth's model
   std::vector<DemoImage> images;
   std::vector<DemoExport> exports;  // the chosen fit, one per export target
+  std::string view_path;            // brdf view of the data and the chosen fit
   double seconds = 0;
 };
 

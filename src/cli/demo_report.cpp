@@ -64,6 +64,10 @@ void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
     out << "<br>truth: <code>" << Escape(dataset.truth) << "</code>; its model fitted back "
         << "within " << Format("%.2g", 100 * dataset.truth_error) << " % (largest parameter)";
   }
+  if (!dataset.view_path.empty()) {
+    out << "<br><a href=\"" << Escape(dataset.view_path)
+        << "\">interactive view</a> of the data and the chosen fit (<code>brdf view</code>)";
+  }
   out << "<br>selection: " << Escape(dataset.selection.reason) << "</p>\n";
   out << "<table>\n<tr><th>model</th><th>BIC</th><th>rmse (sr<sup>-1</sup>)</th>"
          "<th>log rmse</th><th>parameters</th><th>max albedo (integrated)</th><th>energy</th>"

@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
       brdf::cli::AddFitCommand(app),     brdf::cli::AddEnergyCommand(app),
       brdf::cli::AddRenderCommand(app),  brdf::cli::AddTonemapCommand(app),
       brdf::cli::AddBatchCommand(app),   brdf::cli::AddExportCommand(app),
-      brdf::cli::AddPlanCommand(app),
+      brdf::cli::AddPlanCommand(app),    brdf::cli::AddViewCommand(app),
   };
 
   try {

@@ -50,4 +50,5 @@ ComputationError; all are brdfkit.Error. Long calls release the GIL; threads=0 u
   brdf::python::RegisterFit(module);
   brdf::python::RegisterEnergy(module);
   brdf::python::RegisterImages(module);
+  brdf::python::RegisterView(module);
 }
