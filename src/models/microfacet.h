@@ -214,11 +214,7 @@ struct MicrofacetLobe {
   // bound.MaxAlbedo(ln alpha, f0)) of the budget.
   static int NumVariables(bool grey) { return (grey ? 1 : 3) + 1; }
   static void VariableBounds(bool grey, double* lower, double* upper) {
-    const int s = grey ? 1 : 3;
-    std::fill(lower, lower + s, -kLogisticBound);
-    std::fill(upper, upper + s, kLogisticBound);
-    lower[s] = std::log(kFitShapeMin);
-    upper[s] = std::log(kFitShapeMax);
+    LobeVariableBounds(grey, kFitShapeMin, kFitShapeMax, lower, upper);
   }
   template <typename T, typename Bound>
   static void Map(const T* variables, bool grey, const T*, T* params, T* taken,

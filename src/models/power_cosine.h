@@ -117,11 +117,7 @@ struct PowerCosineLobe {
   //   rho_s_c = q_c / A(e), so that A(e) rho_s_c = q_c.
   static int NumVariables(bool grey) { return (grey ? 1 : 3) + 1; }
   static void VariableBounds(bool grey, double* lower, double* upper) {
-    const int s = grey ? 1 : 3;
-    std::fill(lower, lower + s, -kLogisticBound);
-    std::fill(upper, upper + s, kLogisticBound);
-    lower[s] = std::log(kFitShapeMin);
-    upper[s] = std::log(kFitShapeMax);
+    LobeVariableBounds(grey, kFitShapeMin, kFitShapeMax, lower, upper);
   }
   template <typename T, typename Bound>
   static void Map(const T* variables, bool grey, const T* budget, T* params, T* taken,

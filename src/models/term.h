@@ -85,6 +85,17 @@ inline double BoundedLogit(double p) {
   return std::clamp(Logit(p), -kLogisticBound, kLogisticBound);
 }
 
+// The box of a lobe's variables: its shares (one, or one per channel) within +-kLogisticBound,
+// then the log of its shape within [shape_min, shape_max].
+inline void LobeVariableBounds(bool grey, double shape_min, double shape_max, double* lower,
+                               double* upper) {
+  const int shares = grey ? 1 : 3;
+  std::fill(lower, lower + shares, -kLogisticBound);
+  std::fill(upper, upper + shares, kLogisticBound);
+  lower[shares] = std::log(shape_min);
+  upper[shares] = std::log(shape_max);
+}
+
 // A lobe's variables from its per-channel shares s[3] and its shape: s[0..2] then the shape, or
 // for a grey lobe (one share for all channels) their mean, then the shape.
 inline void PackShares(const double* s, double shape, bool grey, double* variables) {
