@@ -105,6 +105,7 @@ Schedule Hemisphere(const std::string& spec) {
 Schedule Merl(const std::string& spec) {
   ParseOptions(spec, {});
   Schedule schedule;
+  schedule.fixed_grid = true;
   for (int h = 0; h < MerlTable::kThetaHalfBins; ++h) {
     for (int d = 0; d < MerlTable::kThetaDiffBins; ++d) {
       for (int p = 0; p < MerlTable::kPhiDiffBins; ++p) {

@@ -43,6 +43,9 @@ struct Schedule {
   // The geometries were chosen one by one (file:, e.g. a plan): each reading stands for itself,
   // not for a patch of the hemisphere, so a fit weighs them equally (by their sigma only).
   bool designed = false;
+  // The readings lie on a fixed grid of cells (the MERL half/difference grid), the one a
+  // fixed-grid format (FileFormat::fixed_grid, MERL .binary) holds.
+  bool fixed_grid = false;
   std::vector<Incidence> incidences;
 
   size_t CountGeometries() const;

@@ -78,7 +78,7 @@ Command AddMeasureCommand(CLI::App& parent) {
             }
             const gonio::Schedule schedule = gonio::MakeSchedule(options->schedule);
             const FileFormat& output_format = OutputFormat(options->out);
-            if ((schedule.kind == "merl") != output_format.fixed_grid) {
+            if (schedule.fixed_grid != output_format.fixed_grid) {
               throw UsageError(options->out +
                                ": the merl schedule and MERL .binary output go together "
                                "(--schedule merl --out FILE.binary)");
