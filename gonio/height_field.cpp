@@ -126,7 +126,7 @@ HeightField MakeHeightField(const HeightFieldSpec& spec) {
   }
   std::vector<float> noise(size_t(n) * n);
   for (size_t k = 0; k < noise.size(); ++k) {
-    noise[k] = static_cast<float>(Rng(spec.seed, Stream::kHeightField, k).Normal());
+    noise[k] = static_cast<float>(StreamRng(spec.seed, Stream::kHeightField, k).Normal());
   }
   field.heights = BlurPeriodic(noise, n, spec.correlation);
   const double scale = spec.rms_slope / field.RmsSlope();

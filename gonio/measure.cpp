@@ -107,7 +107,7 @@ Calibration::Calibration(const Instrument& instrument, double reference_reading,
   }
   double sum = 0;
   for (int r = 0; r < instrument.reference_readings; ++r) {
-    Rng rng(seed, Stream::kReferenceNoise, r);
+    Rng rng = StreamRng(seed, Stream::kReferenceNoise, r);
     sum += NoisyCounts(expected, instrument.read_noise * instrument.read_noise, &rng);
   }
   reference_counts_ = sum / instrument.reference_readings;
@@ -162,7 +162,7 @@ void Calibration::CalibrateRatio(const Rgb& reading, const Rgb& reference_readin
 
 void Calibration::Ratio(const Rgb& reading, const Rgb* reference_reading, uint64_t rng_index,
                         Rgb* ratio, Rgb* sigma) const {
-  Rng rng(seed_, Stream::kReadingNoise, rng_index);
+  Rng rng = StreamRng(seed_, Stream::kReadingNoise, rng_index);
   const double read_variance = instrument_.read_noise * instrument_.read_noise;
   const bool noisy = instrument_.photons > 0;
   for (int c = 0; c < 3; ++c) {
@@ -288,7 +288,7 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
   auto measure_incidence = [&](size_t g) {
     const Incidence& incidence = schedule.incidences[g];
     std::vector<double> packed(incidence.detectors.size() * kDoubles, 0.0);
-    Rng incidence_rng(options.seed, Stream::kIncidenceJitter, g);
+    Rng incidence_rng = StreamRng(options.seed, Stream::kIncidenceJitter, g);
     const double g1 = incidence_rng.Normal(), g2 = incidence_rng.Normal();
     const Vec3 wi = PerturbDirection(incidence.wi, jitter, g1, g2);
     std::vector<Vec3> detectors;
@@ -300,7 +300,7 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule) {
         packed[k * kDoubles] = 1;
         continue;
       }
-      Rng detector_rng(options.seed, Stream::kDetectorJitter, index);
+      Rng detector_rng = StreamRng(options.seed, Stream::kDetectorJitter, index);
       const double h1 = detector_rng.Normal(), h2 = detector_rng.Normal();
       detectors.push_back(PerturbDirection(wo, jitter, h1, h2));
       indices.push_back(index);

@@ -72,7 +72,7 @@ SphereAcquisition::View SphereAcquisition::Shade(const GBuffer& gbuffer, double 
                                                  uint64_t seed, uint64_t view_index) const {
   const int n = gbuffer.resolution;
   // The light arm's positioning error, once per view; the acquisition assumes the nominal.
-  Rng jitter_rng(seed, Stream::kIncidenceJitter, view_index);
+  Rng jitter_rng = StreamRng(seed, Stream::kIncidenceJitter, view_index);
   const double g1 = jitter_rng.Normal(), g2 = jitter_rng.Normal();
   const Vec3 light_nominal(std::sin(light_angle), 0, std::cos(light_angle));
   const double jitter = DegToRad(instrument_.jitter_deg);

@@ -216,7 +216,7 @@ struct alignas(64) PathResult {
 
 // A path between its first segment and the rest.
 struct PathState {
-  Rng rng{0};
+  Rng rng;
   Vec3 origin, direction;
   Rgb throughput;
   double weight = 0;
@@ -237,7 +237,7 @@ class PathTracer {
   // The first numbers of path `ray`: two for its source direction, then its entry point
   // (x, y) in units of the tile.
   Rng StartRng(int64_t ray, Point2* source, Point2* entry) const {
-    Rng rng(incidence_seed_, Stream::kRayPath, static_cast<uint64_t>(ray));
+    Rng rng = StreamRng(incidence_seed_, Stream::kRayPath, static_cast<uint64_t>(ray));
     // Separate statements: argument evaluation order is unspecified, and the output must not
     // depend on the compiler.
     source->x() = rng.Uniform();
@@ -340,7 +340,7 @@ TracedSurfaceSample::Trace TracedSurfaceSample::TraceIncidence(
   const DetectorLookup lookup(detectors, instrument.DetectorCosHalfAngle());
   const int64_t batches = (rays + kRaysPerBatch - 1) / kRaysPerBatch;
   std::vector<Trace> partial(batches);
-  const uint64_t incidence_seed = Rng(seed, Stream::kRayBatch, incidence_index).NextU64();
+  const uint64_t incidence_seed = StreamRng(seed, Stream::kRayBatch, incidence_index).Bits();
   const PathTracer tracer(*scene_, material_, spec_.bounces, instrument, wi, incidence_seed);
   // The paths are traced in sweeps of whole batches, each sweep in the order of its entry
   // points along a Morton curve over the tile: neighbouring paths then walk the same part of

@@ -255,7 +255,7 @@ TEST(GonioSurfaceTest, DetectorLookupFindsEveryConeContainingTheDirection) {
     const double cos_half_angle = ConeCosHalfAngle(solid_angle);
     const DetectorLookup lookup(detectors, cos_half_angle);
     std::vector<Vec3> directions;
-    Rng rng(11);
+    Rng rng(0, 11);
     for (int k = 0; k < 30000; ++k)
       directions.push_back(SampleCosineHemisphere(Point2(rng.Uniform(), rng.Uniform())));
     for (int theta = 0; theta < 90; ++theta) {

@@ -12,12 +12,12 @@
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "core/rng.h"
 #include "core/sampling.h"
 #include "energy/albedo.h"
 #include "energy/lobe_quadrature.h"
 #include "energy/model_terms.h"
 #include "energy/monte_carlo.h"
-#include "energy/random.h"
 #include "fitters/microfacet_bound.h"
 #include "fitters/parameterization.h"
 #include "models/model_string.h"
@@ -350,7 +350,7 @@ namespace {
 double SamplerChiSquareZ(const LobeCoordinates& lobe, const Vec3& wo, int samples) {
   constexpr int kCosBins = 40, kPhiBins = 80;
   std::vector<double> observed(kCosBins * kPhiBins + 1, 0.0);
-  RandomStream random(11, 0);
+  Rng random(0, 11);
   for (int k = 0; k < samples; ++k) {
     const Vec3 wi = SampleStrategy(lobe, wo, random.Uniform2D());
     if (!(wi.z() > 0)) {

@@ -10,6 +10,7 @@
 #include "core/angles.h"
 #include "core/colour.h"
 #include "core/errors.h"
+#include "core/rng.h"
 #include "energy/albedo.h"
 #include "hdr/simd.h"
 #include "io/formats.h"
@@ -18,7 +19,6 @@
 #include "render/environment.h"
 #include "render/lights.h"
 #include "render/material.h"
-#include "render/sampling.h"
 #include "render/sphere.h"
 #include "test_util.h"
 

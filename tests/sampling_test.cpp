@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "core/angles.h"
+#include "core/rng.h"
 #include "energy/monte_carlo.h"
-#include "energy/random.h"
 
 namespace brdf {
 namespace {
@@ -17,7 +17,7 @@ namespace {
 constexpr int kDraws = 200000;
 
 TEST(Sampling, CosineHemisphereMomentsAndPdf) {
-  RandomStream random(3, 0);
+  Rng random(0, 3);
   double sum_cos = 0, sum_cos_cubed_over_pdf = 0;
   for (int k = 0; k < kDraws; ++k) {
     const Vec3 w = SampleCosineHemisphere(random.Uniform2D());
@@ -33,7 +33,7 @@ TEST(Sampling, CosineHemisphereMomentsAndPdf) {
 
 TEST(Sampling, PowerCosineLobeMomentMatchesItsDensity) {
   for (double exponent : {1.0, 10.0, 1000.0}) {
-    RandomStream random(5, static_cast<uint64_t>(exponent));
+    Rng random(static_cast<uint64_t>(exponent), 5);
     double sum_cos = 0;
     for (int k = 0; k < kDraws; ++k)
       sum_cos += SamplePowerCosineLobe(random.Uniform2D(), exponent).z();
@@ -44,7 +44,7 @@ TEST(Sampling, PowerCosineLobeMomentMatchesItsDensity) {
 
 TEST(Sampling, PowerCosinePdfIntegratesToOne) {
   // Estimate ∫ pdf dω with uniform directions on the upper hemisphere (pdf 1/(2 pi)).
-  RandomStream random(7, 0);
+  Rng random(0, 7);
   double lobe = 0;
   for (int k = 0; k < kDraws; ++k) {
     const Point2 u = random.Uniform2D();
@@ -64,7 +64,7 @@ TEST(Sampling, HalfVectorJacobianMapsDensityOfHToDensityOfWi) {
     const Vec3 wo = SphericalDirection(DegToRad(theta_o_deg), 1.0);
     // Exponent 0 (h uniform) keeps 1/pdf = 8 pi (wo.h) bounded, so the estimate converges fast.
     const LobeCoordinates half_vector{LobeFrame::kHalfVector, 0.0};
-    RandomStream random(11, 0);
+    Rng random(0, 11);
     double solid_angle = 0;
     for (int k = 0; k < kDraws; ++k) {
       const Vec3 wi = SampleStrategy(half_vector, wo, random.Uniform2D());
@@ -87,8 +87,8 @@ TEST(Sampling, FrameIsOrthonormalAtThePoles) {
   }
 }
 
-TEST(Sampling, RandomStreamIsUniformAndSeedDependent) {
-  RandomStream random(1, 0), other(1, 1);
+TEST(Sampling, RngIsUniformAndSeedDependent) {
+  Rng random(0, 1), other(1, 1);
   double sum = 0;
   bool differs = false;
   for (int k = 0; k < kDraws; ++k) {
@@ -100,6 +100,48 @@ TEST(Sampling, RandomStreamIsUniformAndSeedDependent) {
   }
   EXPECT_NEAR(sum / kDraws, 0.5, 3e-3);
   EXPECT_TRUE(differs);
+}
+
+// Below(n) is uniform over {0, ..., n - 1}: Pearson's chi-square over the n bins, against the
+// 99.9 % point of chi-square with n - 1 = 6 degrees of freedom (22.46).
+TEST(Sampling, RngBelowIsUniformByChiSquare) {
+  constexpr uint64_t kBins = 7;
+  constexpr int kCount = 70000;
+  Rng random(3, 42);
+  std::vector<int> counts(kBins, 0);
+  for (int k = 0; k < kCount; ++k) {
+    const uint64_t value = random.Below(kBins);
+    ASSERT_LT(value, kBins);
+    ++counts[value];
+  }
+  const double expected = static_cast<double>(kCount) / kBins;
+  double chi_square = 0;
+  for (const int count : counts) chi_square += (count - expected) * (count - expected) / expected;
+  EXPECT_LT(chi_square, 22.46);
+}
+
+// Box-Muller normals have mean 0 and variance 1; Poisson counts have their mean as variance.
+TEST(Sampling, RngNormalAndPoissonMoments) {
+  Rng random(5, 42);
+  double sum = 0, square = 0;
+  for (int k = 0; k < kDraws; ++k) {
+    const double x = random.Normal();
+    sum += x;
+    square += x * x;
+  }
+  EXPECT_NEAR(sum / kDraws, 0.0, 5.0 / std::sqrt(kDraws));
+  EXPECT_NEAR(square / kDraws, 1.0, 5.0 * std::sqrt(2.0 / kDraws));
+  for (const double mean : {3.0, 50.0}) {
+    double total = 0, total_square = 0;
+    for (int k = 0; k < kDraws; ++k) {
+      const double n = random.Poisson(mean);
+      total += n;
+      total_square += n * n;
+    }
+    const double m = total / kDraws;
+    EXPECT_NEAR(m, mean, 5.0 * std::sqrt(mean / kDraws));
+    EXPECT_NEAR(total_square / kDraws - m * m, mean, 0.05 * mean);
+  }
 }
 
 }  // namespace

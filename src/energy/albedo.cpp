@@ -283,11 +283,11 @@ AlbedoEstimate ModelDirectionalAlbedo(const Model& model, double theta_o,
       return estimate;
     }
     case AlbedoMethod::kMonteCarlo: {
-      RandomStream random(options.seed, stream);
+      Rng random(stream, options.seed);
       return EstimateAlbedoCosine(ModelBrdf(model), wo, options.samples, &random);
     }
     case AlbedoMethod::kImportance: {
-      RandomStream random(options.seed, stream);
+      Rng random(stream, options.seed);
       return EstimateAlbedoByMixture(ModelBrdf(model), wo, ImportanceStrategies(terms),
                                      options.samples, &random);
     }
@@ -312,7 +312,7 @@ AlbedoEstimate MeasuredDirectionalAlbedo(const MeasuredBrdf& measured, double th
       return IntegrateInLobeCoordinates(held_light, wi, measured.coordinates, capped);
     }
     case AlbedoMethod::kMonteCarlo: {
-      RandomStream random(options.seed, stream);
+      Rng random(stream, options.seed);
       return EstimateAlbedoCosine(held_light, wi, options.samples, &random);
     }
     case AlbedoMethod::kImportance:

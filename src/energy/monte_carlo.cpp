@@ -71,7 +71,7 @@ double StrategyPdf(const LobeCoordinates& coordinates, const Vec3& wo, const Vec
 
 AlbedoEstimate EstimateAlbedoByMixture(const BrdfFunction& brdf, const Vec3& wo,
                                        const std::vector<SamplingStrategy>& strategies,
-                                       int64_t samples, RandomStream* stream) {
+                                       int64_t samples, Rng* stream) {
   if (samples < 2) throw UsageError("Monte Carlo needs at least 2 samples");
   double total_weight = 0;
   for (const SamplingStrategy& strategy : strategies) total_weight += strategy.weight;
@@ -116,7 +116,7 @@ AlbedoEstimate EstimateAlbedoByMixture(const BrdfFunction& brdf, const Vec3& wo,
 }
 
 AlbedoEstimate EstimateAlbedoCosine(const BrdfFunction& brdf, const Vec3& wo, int64_t samples,
-                                    RandomStream* stream) {
+                                    Rng* stream) {
   return EstimateAlbedoByMixture(brdf, wo, {{{LobeFrame::kNormal, 1.0}, 1.0}}, samples, stream);
 }
 

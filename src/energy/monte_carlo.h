@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/rng.h"
 #include "energy/integrand.h"
-#include "energy/random.h"
 
 namespace brdf {
 
@@ -28,10 +28,10 @@ double StrategyPdf(const LobeCoordinates& coordinates, const Vec3& wo, const Vec
 // given stream.
 AlbedoEstimate EstimateAlbedoByMixture(const BrdfFunction& brdf, const Vec3& wo,
                                        const std::vector<SamplingStrategy>& strategies,
-                                       int64_t samples, RandomStream* stream);
+                                       int64_t samples, Rng* stream);
 
 // Cosine-weighted sampling alone: the estimator is pi f(wi, wo).
 AlbedoEstimate EstimateAlbedoCosine(const BrdfFunction& brdf, const Vec3& wo, int64_t samples,
-                                    RandomStream* stream);
+                                    Rng* stream);
 
 }  // namespace brdf

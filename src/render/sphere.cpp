@@ -13,9 +13,9 @@
 #include "core/float_math.h"
 #include "core/format.h"
 #include "core/progress.h"
+#include "core/rng.h"
 #include "hdr/simd.h"
 #include "render/lobe_sampler.h"
-#include "render/sampling.h"
 
 namespace brdf {
 namespace {
@@ -95,7 +95,7 @@ class EnvironmentEstimator {
     const Vec3f wo = to_local.col(2);  // the viewer, +z in the world
     std::optional<LobeSampler> lobe;
     if (lobe_) lobe.emplace(*lobe_, wo);
-    PixelRandom random(seed, pixel);
+    Rng random(pixel, seed);
 
     // Zeroed: a batch's unused lanes must hold finite numbers.
     uint64_t light_bits[kBatch] = {};
