@@ -299,45 +299,15 @@ const Image8& Display1080() {
   return display;
 }
 
-// Our whole PNG encoder (Sub filter, Huffman coder, checksums) on one thread, against zlib's
-// Huffman-only deflate alone (what the encoder called before) on the same filtered bytes.
-void BM_Png_Ours_OneThread(benchmark::State& state) {
+// The whole PNG encoder (Sub filter, zlib's Huffman-only deflate, checksums) on one thread.
+void BM_Png_OneThread(benchmark::State& state) {
   const Image8& display = Display1080();
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   size_t bytes = 0;
   for (auto _ : state) bytes = EncodePng(display, "bench.png").size();
   state.counters["bytes"] = static_cast<double>(bytes);
 }
-BENCHMARK(BM_Png_Ours_OneThread)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-void BM_Png_ZlibHuffmanOnly_OneThread(benchmark::State& state) {
-  const Image8& display = Display1080();
-  const int64_t row_bytes = int64_t{display.width} * 3;
-  std::vector<uint8_t> filtered(static_cast<size_t>((row_bytes + 1) * display.height));
-  for (int y = 0; y < display.height; ++y) {
-    const uint8_t* in = display.rgb.data() + y * row_bytes;
-    uint8_t* out = filtered.data() + (row_bytes + 1) * y;
-    out[0] = 1;  // Sub
-    for (int64_t i = 0; i < row_bytes; ++i) {
-      out[1 + i] = static_cast<uint8_t>(i < 3 ? in[i] : in[i] - in[i - 3]);
-    }
-  }
-  size_t bytes = 0;
-  for (auto _ : state) {
-    z_stream stream{};
-    deflateInit2(&stream, 1, Z_DEFLATED, -15, 8, Z_HUFFMAN_ONLY);
-    std::vector<uint8_t> out(deflateBound(&stream, filtered.size()) + 16);
-    stream.next_in = filtered.data();
-    stream.avail_in = static_cast<uInt>(filtered.size());
-    stream.next_out = out.data();
-    stream.avail_out = static_cast<uInt>(out.size());
-    deflate(&stream, Z_FINISH);
-    bytes = out.size() - stream.avail_out;
-    deflateEnd(&stream);
-  }
-  state.counters["bytes"] = static_cast<double>(bytes);
-}
-BENCHMARK(BM_Png_ZlibHuffmanOnly_OneThread)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Png_OneThread)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // --- OpenEXR ------------------------------------------------------------------------------
 

@@ -247,11 +247,11 @@ TEST(PngFile, DecodesToThePixelsWrittenWithAnyThreadCount) {
   EXPECT_TRUE(EncodePng(image, "a.png") == many);
 }
 
-// Every Huffman case of the PNG writer's own deflate coder, decoded by libpng (through OpenCV):
-// one pixel; one colour (two literal codes: the value and the end of block); all 256 byte
-// values; and filtered bytes of Fibonacci frequencies, whose Huffman tree is deeper than
-// deflate's 15-bit limit.
-TEST(PngFile, HuffmanCoderCasesDecodeToThePixelsWritten) {
+// The PNG writer's strips, decoded by libpng (through OpenCV), on the cases a Huffman coder
+// finds hardest: one pixel; one colour (two literal codes: the value and the end of block);
+// all 256 byte values; and filtered bytes of Fibonacci frequencies, whose Huffman tree is
+// deeper than deflate's 15-bit limit.
+TEST(PngFile, HardHuffmanCasesDecodeToThePixelsWritten) {
   const auto image_of = [](int width, int height, const std::vector<uint8_t>& filtered) {
     // Undo the Sub filter: the row bytes whose filtered values are `filtered` (cycled).
     Image8 image;

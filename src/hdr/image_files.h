@@ -1,6 +1,6 @@
 // Image files of the HDR pipeline (DESIGN §8): OpenEXR (read, write half or float), Radiance
-// RGBE `.hdr` (read, by brdfkit's own decoder) and 8-bit PNG (write, by brdfkit's own parallel
-// encoder and Huffman coder; zlib only for the checksums). Readers throw InputError naming the file
+// RGBE `.hdr` (read, by brdfkit's own decoder) and 8-bit PNG (write, strips deflated by zlib in
+// parallel). Readers throw InputError naming the file
 // (and the byte where a signature is wrong); writers are atomic (temporary file, then rename) and
 // throw OutputError naming the target.
 #pragma once
