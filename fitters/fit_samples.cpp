@@ -1,6 +1,5 @@
 #include "fitters/fit_samples.h"
 
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -30,11 +29,6 @@ constexpr size_t kPrepareChunk = 16384;
 
 // Samples written from a MERL table into another format (native CSV keeps the "grid"
 // metadata); a measurement read with its table asks the table instead (Measurement::tabulated).
-bool IsMerlGrid(const Measurement& measurement) {
-  auto it = measurement.metadata.find("grid");
-  return it != measurement.metadata.end() && it->second.rfind("MERL", 0) == 0;
-}
-
 // Area of the detector directions nearest each sample of one incidence group, from the
 // distance r_k to its k-th nearest neighbour: area ~ pi r_k^2 / k.
 void NeighbourAreas(const std::vector<const Vec3*>& directions, std::vector<double>* areas) {
@@ -59,51 +53,6 @@ void NeighbourAreas(const std::vector<const Vec3*>& directions, std::vector<doub
   for (double& area : *areas) area = std::max(area, 0.1 * smallest);
 }
 
-// A measurement's samples chunk by chunk: views of Measurement::samples, or made by its
-// SampleSource into a buffer of the calling thread's, with their cells' measures when the source
-// knows them.
-class SampleChunks {
- public:
-  SampleChunks(const Measurement& measurement, size_t chunk_size)
-      : measurement_(measurement), chunk_size_(chunk_size) {}
-  size_t size() const { return measurement_.sample_count(); }
-  size_t chunks() const { return (size() + chunk_size_ - 1) / chunk_size_; }
-  // visit(samples, measures, first, count): samples[0, count) are the measurement's [first,
-  // first + count); measures[0, count) their cells' measures (SampleSource::Measures), or null
-  // when not asked for or not known.
-  template <typename Visitor>
-  void Visit(size_t chunk, bool with_measures, const Visitor& visit) const {
-    const size_t first = chunk * chunk_size_;
-    const size_t count = std::min(size(), first + chunk_size_) - first;
-    const SampleSource* source = measurement_.sample_source.get();
-    if (source == nullptr) {
-      visit(measurement_.samples.data() + first, nullptr, first, count);
-      return;
-    }
-    // Reused by every chunk the thread makes (1.3 MB, resident after its first chunk).
-    Buffers& buffers = buffers_.local();
-    buffers.samples.resize(count);
-    source->Make(first, first + count, buffers.samples.data());
-    const double* measures = nullptr;
-    if (with_measures) {
-      buffers.measures.resize(count);
-      if (source->Measures(first, first + count, buffers.measures.data())) {
-        measures = buffers.measures.data();
-      }
-    }
-    visit(buffers.samples.data(), measures, first, count);
-  }
-
- private:
-  struct Buffers {
-    std::vector<Sample> samples;
-    std::vector<double> measures;
-  };
-  const Measurement& measurement_;
-  size_t chunk_size_;
-  mutable tbb::enumerable_thread_specific<Buffers> buffers_;
-};
-
 }  // namespace
 
 constexpr EnumName<Loss> kLossNames[] = {
@@ -126,54 +75,46 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
   // The usable samples, in file order, copied in parallel: each chunk of the measurement counts
   // its usable ones, the running sum of the counts places each chunk's copies, and the vector is
   // sized once (growing a vector of a million samples by doubling would hold the old and the new
-  // copy at once and fault pages for both). Samples a reader makes on demand are made twice,
-  // once for each pass: that costs less than holding them all.
-  const SampleChunks source(measurement, kPrepareChunk);
-  const size_t chunks = source.chunks();
+  // copy at once).
+  const std::vector<Sample>& source = measurement.samples;
+  const size_t chunks = (source.size() + kPrepareChunk - 1) / kPrepareChunk;
+  const auto chunk_range = [&](size_t chunk) {
+    return std::pair(chunk * kPrepareChunk, std::min(source.size(), (chunk + 1) * kPrepareChunk));
+  };
   std::vector<size_t> first_usable(chunks + 1, 0), missing(chunks, 0);
   tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
-    source.Visit(chunk, false, [&](const Sample* samples, const double*, size_t, size_t count) {
-      for (size_t k = 0; k < count; ++k) {
-        first_usable[chunk + 1] += UsableForFit(samples[k]);
-        missing[chunk] += samples[k].missing;
-      }
-    });
+    const auto [begin, end] = chunk_range(chunk);
+    for (size_t k = begin; k < end; ++k) {
+      first_usable[chunk + 1] += UsableForFit(source[k]);
+      missing[chunk] += source[k].missing;
+    }
   });
   std::partial_sum(first_usable.begin(), first_usable.end(), first_usable.begin());
   const size_t count = first_usable[chunks];
   prepared.skipped_missing = std::accumulate(missing.begin(), missing.end(), size_t{0});
   prepared.skipped_invalid = source.size() - count - prepared.skipped_missing;
   prepared.samples.resize(count);
-  // Solid-angle weights from a table's cells (or samples on the MERL grid written by another
-  // format) are taken in the same pass as the copies.
+  // Solid-angle weights from a table's cells (or from the cells of a MERL table's samples
+  // written by another format) are taken in the same pass as the copies.
   std::shared_ptr<const CellMeasure> cells = measurement.cell_measure;
-  if (cells == nullptr && !measurement.equal_weighting() && IsMerlGrid(measurement)) {
+  if (cells == nullptr && !measurement.equal_weighting() && OnMerlGrid(source)) {
     cells = MerlCellMeasure();
   }
   const bool per_sample_columns = measurement.has_weight() || measurement.has_sigma();
   std::vector<size_t> source_index(per_sample_columns ? count : 0);
-  // The source's own measures are those of the reader's cell measure.
-  const bool source_measures = cells != nullptr && cells == measurement.cell_measure;
   tbb::parallel_for(size_t{0}, chunks, [&](size_t chunk) {
-    source.Visit(
-        chunk, source_measures,
-        [&](const Sample* samples, const double* measures, size_t first, size_t count_in_chunk) {
-          size_t u = first_usable[chunk];
-          for (size_t k = 0; k < count_in_chunk; ++k) {
-            if (!UsableForFit(samples[k])) continue;
-            FitSample& fit_sample = prepared.samples[u];
-            fit_sample.wi = samples[k].wi;
-            fit_sample.wo = samples[k].wo;
-            fit_sample.value = samples[k].value;
-            if (measures != nullptr) {
-              fit_sample.weight = measures[k];
-            } else if (cells != nullptr) {
-              fit_sample.weight = cells->Measure(fit_sample.wi, fit_sample.wo);
-            }
-            if (per_sample_columns) source_index[u] = first + k;
-            ++u;
-          }
-        });
+    const auto [begin, end] = chunk_range(chunk);
+    size_t u = first_usable[chunk];
+    for (size_t k = begin; k < end; ++k) {
+      if (!UsableForFit(source[k])) continue;
+      FitSample& fit_sample = prepared.samples[u];
+      fit_sample.wi = source[k].wi;
+      fit_sample.wo = source[k].wo;
+      fit_sample.value = source[k].value;
+      if (cells != nullptr) fit_sample.weight = cells->Measure(fit_sample.wi, fit_sample.wo);
+      if (per_sample_columns) source_index[u] = k;
+      ++u;
+    }
   });
   std::vector<FitSample>& samples = prepared.samples;
   if (samples.empty()) {

@@ -268,24 +268,15 @@ TEST(Merl, AReadTableHoldsTheFilesValuesAndChangesOnlyItsOwnCopy) {
 }
 
 // The evaluator a read hands out has values of its own: the file rewritten in place afterwards
-// (truncated first, as most programs write) changes nothing it answers. A reader told that the
-// caller drops the evaluator (a fit) builds none, and the samples are the same.
-TEST(Merl, TheEvaluatorOutlivesItsFileAndAFitReadBuildsNone) {
+// (truncated first, as most programs write) changes nothing it answers.
+TEST(Merl, TheEvaluatorOutlivesItsFile) {
   ScratchDir dir;
   const MerlTable written = RandomTable(11, 0.0, 2000.0);
   const std::string path = dir.File("rewritten.binary");
   written.Write(path);
   const Measurement read = ReadMeasurement(path);
   ASSERT_NE(read.tabulated, nullptr);
-  ReadOptions for_fit;
-  for_fit.evaluator = false;
-  const Measurement fit_read = ReadMeasurement(path, for_fit);
-  EXPECT_EQ(fit_read.tabulated, nullptr);
-  ASSERT_NE(fit_read.cell_measure, nullptr);
-  ASSERT_EQ(fit_read.samples.size(), read.samples.size());
-  for (size_t k = 0; k < read.samples.size(); k += 997) {
-    ASSERT_TRUE((fit_read.samples[k].value == read.samples[k].value).all()) << k;
-  }
+  ASSERT_NE(read.cell_measure, nullptr);
   {
     std::ofstream rewrite(path, std::ios::binary | std::ios::trunc);
     rewrite << "not a table any more";
@@ -298,111 +289,31 @@ TEST(Merl, TheEvaluatorOutlivesItsFileAndAFitReadBuildsNone) {
   }
 }
 
-// A read that leaves its samples to be made on demand (ReadOptions::samples = false, as `brdf fit`
-// reads) hands out a source whose samples are bit for bit the ones a full read holds, over any
-// range; a fit's prepared samples from either are the same, and so is the fit.
-TEST(Merl, SamplesMadeOnDemandAreTheSamplesOfAFullRead) {
+// A MERL table's samples written by another format (no cell measure of their own, no grid
+// metadata) are recognised by where they sit and weighted by their cells, as the table's own
+// read weighs them; one sample moved off its cell centre makes them scattered data again.
+TEST(Merl, SamplesOnTheGridAreWeightedByTheirCells) {
   ScratchDir dir;
-  const MerlTable written = RandomTable(13, -300.0, 3000.0);  // about a tenth missing
-  const std::string path = dir.File("on-demand.binary");
-  written.Write(path);
-  const Measurement full = ReadMeasurement(path);
-  ReadOptions lean;
-  lean.samples = false;
-  lean.evaluator = false;
-  const Measurement on_demand = ReadMeasurement(path, lean);
-  ASSERT_NE(on_demand.sample_source, nullptr);
-  EXPECT_TRUE(on_demand.samples.empty());
-  EXPECT_EQ(on_demand.sample_count(), full.samples.size());
-  EXPECT_EQ(on_demand.metadata, full.metadata);
-  ASSERT_NE(on_demand.cell_measure, nullptr);
-  const auto same = [](const Sample& a, const Sample& b) {
-    return (a.wi.array() == b.wi.array()).all() && (a.wo.array() == b.wo.array()).all() &&
-           (a.value == b.value).all() && a.missing == b.missing;
-  };
-  // The whole table at once, and ranges that start and end inside a theta_h row.
-  std::vector<Sample> made(full.samples.size());
-  on_demand.sample_source->Make(0, made.size(), made.data());
-  for (size_t k = 0; k < made.size(); ++k) ASSERT_TRUE(same(made[k], full.samples[k])) << k;
-  for (size_t begin : {size_t{1}, size_t{16199}, size_t{700001}}) {
-    std::vector<Sample> part(333);
-    on_demand.sample_source->Make(begin, begin + part.size(), part.data());
-    for (size_t k = 0; k < part.size(); ++k) {
-      ASSERT_TRUE(same(part[k], full.samples[begin + k])) << begin + k;
-    }
-  }
-
-  const fitters::PreparedSamples from_full = fitters::PrepareSamples(full);
-  const fitters::PreparedSamples from_source = fitters::PrepareSamples(on_demand);
-  EXPECT_EQ(from_source.skipped_missing, from_full.skipped_missing);
-  EXPECT_EQ(from_source.skipped_invalid, from_full.skipped_invalid);
-  EXPECT_GT(from_full.skipped_missing, size_t{MerlTable::kCells / 20});
-  EXPECT_EQ(from_source.weighting, from_full.weighting);
-  ASSERT_EQ(from_source.samples.size(), from_full.samples.size());
-  for (size_t k = 0; k < from_full.samples.size(); ++k) {
-    const fitters::FitSample& a = from_source.samples[k];
-    const fitters::FitSample& b = from_full.samples[k];
-    ASSERT_TRUE((a.wi.array() == b.wi.array()).all() && (a.wo.array() == b.wo.array()).all() &&
-                (a.value == b.value).all() && (a.scale == b.scale).all() && a.weight == b.weight)
-        << k;
-  }
-}
-
-// The measures a sample source hands out by cell index are those the cell measure finds by
-// locating each made sample's directions on the grid again, bit for bit, for every cell of the
-// table (so a fit's weights do not depend on which of the two it asked).
-TEST(Merl, MeasuresByCellAreTheMeasuresOfTheSamplesDirections) {
-  ScratchDir dir;
-  const MerlTable written = RandomTable(17, -300.0, 3000.0);
-  const std::string path = dir.File("measures.binary");
-  written.Write(path);
-  ReadOptions lean;
-  lean.samples = false;
-  lean.evaluator = false;
-  const Measurement on_demand = ReadMeasurement(path, lean);
-  ASSERT_NE(on_demand.sample_source, nullptr);
-  ASSERT_NE(on_demand.cell_measure, nullptr);
-  const size_t count = on_demand.sample_count();
-  std::vector<Sample> made(count);
-  on_demand.sample_source->Make(0, count, made.data());
-  std::vector<double> measures(count, -1.0);
-  ASSERT_TRUE(on_demand.sample_source->Measures(0, count, measures.data()));
-  size_t above = 0;
-  for (size_t k = 0; k < count; ++k) {
-    if (made[k].wi.z() <= 0 || made[k].wo.z() <= 0) continue;  // no fit weighs these
-    ++above;
-    ASSERT_EQ(measures[k], on_demand.cell_measure->Measure(made[k].wi, made[k].wo)) << k;
-    ASSERT_GT(measures[k], 0.0) << k;
-  }
-  EXPECT_GT(above, count / 2);
-  // A range that starts and ends inside rows gives the same values.
-  std::vector<double> part(1000);
-  ASSERT_TRUE(on_demand.sample_source->Measures(700001, 701001, part.data()));
-  for (size_t k = 0; k < part.size(); ++k) EXPECT_EQ(part[k], measures[700001 + k]) << k;
-}
-
-// The fit of a table read with its samples made on demand is the fit of the full read: the same
-// parameters, metrics, standard errors and warnings, bit for bit.
-TEST(Merl, AFitOfSamplesMadeOnDemandIsTheFitOfAFullRead) {
-  ScratchDir dir;
-  const std::string path = dir.File("analytic.binary");
+  const std::string path = dir.File("grid.binary");
   WriteMeasurement(TabulateOnGrid(ParseModel("blinn-phong:rho_d=0.3,0.2,0.1:rho_s=0.2:m=80")),
                    path);
-  ReadOptions lean;
-  lean.samples = false;
-  lean.evaluator = false;
-  const fitters::FitResult full =
-      fitters::FitModel(ReadMeasurement(path), "blinn-phong", fitters::FitOptions{});
-  const fitters::FitResult on_demand =
-      fitters::FitModel(ReadMeasurement(path, lean), "blinn-phong", fitters::FitOptions{});
-  EXPECT_TRUE(full.converged);
-  EXPECT_EQ(on_demand.model.ToString(17), full.model.ToString(17));
-  EXPECT_EQ(on_demand.stderr_values, full.stderr_values);
-  EXPECT_EQ(on_demand.metrics.rmse, full.metrics.rmse);
-  EXPECT_EQ(on_demand.bic, full.bic);
-  EXPECT_EQ(on_demand.samples, full.samples);
-  EXPECT_EQ(on_demand.skipped, full.skipped);
-  EXPECT_EQ(on_demand.warnings, full.warnings);
+  const Measurement table = ReadMeasurement(path);
+  Measurement copy;
+  copy.source = "copy";
+  copy.samples = table.samples;
+  EXPECT_TRUE(OnMerlGrid(copy.samples));
+  const fitters::PreparedSamples from_table = fitters::PrepareSamples(table);
+  const fitters::PreparedSamples from_copy = fitters::PrepareSamples(copy);
+  EXPECT_EQ(from_copy.weighting, from_table.weighting);
+  ASSERT_EQ(from_copy.samples.size(), from_table.samples.size());
+  for (size_t k = 0; k < from_table.samples.size(); k += 101) {
+    ASSERT_EQ(from_copy.samples[k].weight, from_table.samples[k].weight) << k;
+  }
+  size_t above = 0;
+  while (copy.samples[above].missing) ++above;
+  copy.samples[above].wo = (copy.samples[above].wo + Vec3(1e-4, 0, 0)).normalized();
+  EXPECT_FALSE(OnMerlGrid(copy.samples));
+  EXPECT_NE(fitters::PrepareSamples(copy).weighting, from_table.weighting);
 }
 
 TEST(Merl, HostileFilesNameTheByte) {

@@ -42,8 +42,7 @@ Command AddFitCommand(CLI::App& parent) {
 
   return {app, [options]() {
             const fitters::FitOptions fit_options = options->fit.ToFitOptions(options->threads);
-            const Measurement measurement =
-                ReadForFit(options->path, options->fit, /*samples=*/!options->plot.empty());
+            const Measurement measurement = ReadForFit(options->path, options->fit);
 
             const fitters::ModelFit model_fit =
                 fitters::FitModelOrAuto(measurement, options->fit.model, fit_options);

@@ -11,12 +11,9 @@ std::string ModelNames() {
   return names;
 }
 
-Measurement ReadForFit(const std::string& path, const FitArguments& arguments, bool samples) {
-  ReadOptions options = arguments.ToReadOptions();
-  options.evaluator = false;
-  options.samples = samples;
-  Measurement measurement = ReadMeasurement(path, options);
-  measurement.tabulated.reset();  // the readers that build one regardless
+Measurement ReadForFit(const std::string& path, const FitArguments& arguments) {
+  Measurement measurement = ReadMeasurement(path, arguments.ToReadOptions());
+  measurement.tabulated.reset();
   return measurement;
 }
 

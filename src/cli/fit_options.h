@@ -20,13 +20,8 @@ void AddFitOptions(CLI::App* app, FitArguments* arguments);
 std::string ModelNames();
 
 // Reads a measurement for `brdf fit` and `brdf batch`, which evaluate nothing between its
-// samples: without its table evaluator (Measurement::tabulated; a fit reads the samples and the
-// cell measure, while a MERL table's evaluator holds a second, 35 MB copy of the values), whose
-// pages go back to the system before the fit's peak of memory. Unless `samples` is set (a caller
-// that reads Measurement::samples itself, such as `brdf fit --plot`), a reader that can leaves its
-// samples to be made on demand (ReadOptions::samples): the fit copies those it uses into its own
-// buffer, and a MERL table's 117 MB of samples are then never held beside that copy.
-Measurement ReadForFit(const std::string& path, const FitArguments& arguments,
-                       bool samples = false);
+// samples: its table evaluator (Measurement::tabulated, a second 35 MB copy of a MERL table's
+// values) is let go before the fit's peak of memory.
+Measurement ReadForFit(const std::string& path, const FitArguments& arguments);
 
 }  // namespace brdf::cli

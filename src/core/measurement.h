@@ -50,31 +50,11 @@ class CellMeasure {
   virtual std::string Name() const = 0;
 };
 
-// A reader's maker of its samples, for data whose samples follow from a table (MERL): any range
-// of them on demand, in file order. A reader sets it instead of filling Measurement::samples only
-// when asked to (ReadOptions::samples = false): a consumer that keeps its own copy of the samples
-// it needs (a fit's prepared samples) then never holds every sample twice.
-class SampleSource {
- public:
-  virtual ~SampleSource() = default;
-  // The number of samples, as Measurement::samples would hold.
-  virtual size_t size() const = 0;
-  // Writes samples [begin, end) to out[0, end - begin): the same values the reader would have
-  // put in Measurement::samples. Safe to call from several threads at once.
-  virtual void Make(size_t begin, size_t end, Sample* out) const = 0;
-  // Writes the measures of samples [begin, end) to out[0, end - begin), the values
-  // Measurement::cell_measure gives for them, and returns true; or returns false, writing
-  // nothing, if the source does not know its cells (a consumer then asks cell_measure).
-  virtual bool Measures(size_t /*begin*/, size_t /*end*/, double* /*out*/) const { return false; }
-};
-
 struct Measurement {
   std::string format;  // the reader's name, e.g. "merl"
   std::string source;  // the path it was read from
   // Ordered key -> value metadata ("sample", "instrument", "illuminant", "units", ...).
   std::map<std::string, std::string> metadata;
-  // Empty when the reader was asked not to make them (ReadOptions::samples = false) and set
-  // `sample_source` instead.
   std::vector<Sample> samples;
   std::vector<Rgb> sigma;      // empty, or one standard deviation per sample
   std::vector<double> weight;  // empty, or one weight per sample
@@ -82,10 +62,6 @@ struct Measurement {
   std::shared_ptr<const TabulatedBrdf> tabulated;
   // Set with `tabulated`, by the same readers: the measure of each sample's cell.
   std::shared_ptr<const CellMeasure> cell_measure;
-  // Set, and `samples` left empty, only by a reader asked not to make its samples (above).
-  std::shared_ptr<const SampleSource> sample_source;
-  // The number of samples, made or not.
-  size_t sample_count() const { return sample_source ? sample_source->size() : samples.size(); }
 
   bool has_sigma() const { return !sigma.empty(); }
   bool has_weight() const { return !weight.empty(); }

@@ -15,16 +15,6 @@ namespace brdf {
 struct ReadOptions {
   // Illuminant under which spectral files (ASTM, pbrt-v2) become RGB; recorded in metadata.
   Illuminant illuminant = Illuminant::kD65;
-  // Whether the caller keeps Measurement::tabulated. A fit drops it at once (it needs the cell
-  // measure, not the values between samples), so a reader may then skip building it: the MERL
-  // reader leaves its table in the file's mapped pages instead of copying it for an evaluator
-  // that may outlive the file's contents.
-  bool evaluator = true;
-  // Whether the caller needs Measurement::samples. A fit copies the samples it uses into a
-  // buffer of its own (fitters/fit_samples.h), so a reader whose samples follow from a table (MERL)
-  // may then set Measurement::sample_source instead and make them only when asked: a MERL table's
-  // 1.46 million samples are 117 MB. Readers of other formats fill `samples` regardless.
-  bool samples = true;
   // RGL-EPFL tensors: read with the more grazing direction as the light (reciprocal by
   // construction) instead of as the format's reference evaluates them (io/rgl_bsdf.h).
   bool reciprocal = false;

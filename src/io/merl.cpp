@@ -100,12 +100,6 @@ double MerlTable::CellMeasure(const Vec3& wi, const Vec3& wo) {
   return BinMeasures()[i * kThetaDiffBins + j];
 }
 
-void MerlTable::CellMeasures(int64_t begin, int64_t end, double* out) {
-  const std::vector<double>& measures = BinMeasures();
-  // A cell's (theta_h, theta_d) bin is its index without the phi_d digit.
-  for (int64_t cell = begin; cell < end; ++cell) out[cell - begin] = measures[cell / kPhiDiffBins];
-}
-
 const Rgb MerlTable::kScale(1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0);
 
 MerlTable::MerlTable() : owned_(3 * kCells, -1.0) {}
@@ -303,25 +297,6 @@ void AddGridMetadata(Measurement* measurement) {
       "cells with a negative stored value, or whose centre lies below the horizon";
 }
 
-// The table's samples made on demand (ReadOptions::samples = false): the table, and with it the
-// file's mapping, lives as long as this does.
-class MerlSamples final : public SampleSource {
- public:
-  explicit MerlSamples(std::shared_ptr<const MerlTable> table) : table_(std::move(table)) {}
-  size_t size() const override { return MerlTable::kCells; }
-  void Make(size_t begin, size_t end, Sample* out) const override {
-    table_->MakeSamples(static_cast<int64_t>(begin), static_cast<int64_t>(end), out);
-  }
-  // A sample's cell is its index: no direction has to be located on the grid again.
-  bool Measures(size_t begin, size_t end, double* out) const override {
-    MerlTable::CellMeasures(static_cast<int64_t>(begin), static_cast<int64_t>(end), out);
-    return true;
-  }
-
- private:
-  std::shared_ptr<const MerlTable> table_;
-};
-
 }  // namespace
 
 void MerlTable::MakeSamples(int64_t begin, int64_t end, Sample* out) const {
@@ -414,23 +389,37 @@ bool SniffMerl(std::string_view head, int64_t file_size) {
 
 void CopyMerl(const std::string& from, const std::string& to) { MerlTable::Read(from).Write(to); }
 
-Measurement ReadMerl(const std::string& path, const ReadOptions& options) {
+Measurement ReadMerl(const std::string& path, const ReadOptions&) {
   MerlTable table = MerlTable::Read(path);
   // The evaluator may live long after this read (a Python session): with values of its own, a
-  // file rewritten in place meanwhile cannot pull its pages away. Without one the table stays in
-  // the file's mapped pages.
-  if (options.evaluator) table.Detach();
+  // file rewritten in place meanwhile cannot pull its pages away.
+  table.Detach();
   auto shared = std::make_shared<const MerlTable>(std::move(table));
-  Measurement measurement;
-  if (options.samples) {
-    measurement = shared->ToMeasurement();
-  } else {  // the caller copies what it needs: the samples are made when it asks
-    AddGridMetadata(&measurement);
-    measurement.sample_source = std::make_shared<const MerlSamples>(shared);
-  }
+  Measurement measurement = shared->ToMeasurement();
   measurement.cell_measure = MerlCellMeasure();
-  if (options.evaluator) measurement.tabulated = MerlTabulated(std::move(shared));
+  measurement.tabulated = MerlTabulated(std::move(shared));
   return measurement;
+}
+
+bool OnMerlGrid(const std::vector<Sample>& samples) {
+  if (samples.empty()) return false;
+  return tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, samples.size()), true,
+      [&](const tbb::blocked_range<size_t>& range, bool on_grid) {
+        for (size_t k = range.begin(); on_grid && k < range.end(); ++k) {
+          const Sample& sample = samples[k];
+          if (sample.wi.z() <= 0.0 || sample.wo.z() <= 0.0) continue;  // no cell to sit in
+          const HalfDiff hd = ToHalfDiff(sample.wi, sample.wo);
+          const HalfDiff centre = MerlTable::CellCentre(MerlTable::ThetaHalfIndex(hd.theta_h),
+                                                        MerlTable::ThetaDiffIndex(hd.theta_d),
+                                                        MerlTable::PhiDiffIndex(hd.phi_d));
+          on_grid = std::abs(hd.theta_h - centre.theta_h) <= kOnGridTolerance &&
+                    std::abs(hd.theta_d - centre.theta_d) <= kOnGridTolerance &&
+                    std::abs(std::fmod(hd.phi_d, kPi) - centre.phi_d) <= kOnGridTolerance;
+        }
+        return on_grid;
+      },
+      [](bool a, bool b) { return a && b; });
 }
 
 WriteReport WriteMerl(const Measurement& measurement, const std::string& path) {

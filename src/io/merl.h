@@ -56,7 +56,7 @@ class MerlTable {
   // centre directions fall at or below the horizon, are flagged missing.
   Measurement ToMeasurement() const;
   // Those samples of cells [begin, end) (cell indices, CellIndex order) written to out[0, end -
-  // begin): what a reader asked not to make its samples hands out instead (SampleSource).
+  // begin).
   void MakeSamples(int64_t begin, int64_t end, Sample* out) const;
 
   static int ThetaHalfIndex(double theta_h);
@@ -68,9 +68,6 @@ class MerlTable {
   // dwi dwo of the cell holding (wi, wo): 4 cos(theta_d) dw_h dw_d with phi_h integrated out
   // (isotropy), theta_h bins of width ((i+1)^2 - i^2) / 90^2 * pi/2.
   static double CellMeasure(const Vec3& wi, const Vec3& wo);
-  // The same for cells [begin, end) by index, written to out[0, end - begin): the measures of
-  // the samples MakeSamples makes of them.
-  static void CellMeasures(int64_t begin, int64_t end, double* out);
 
   // Stored (unscaled) value of a cell; negative means missing.
   double raw(int channel, int64_t cell) const {
@@ -110,5 +107,8 @@ class MerlTable {
 std::shared_ptr<const TabulatedBrdf> MerlTabulated(std::shared_ptr<const MerlTable> table);
 // The grid's cell measure (MerlTable::CellMeasure) as the capability readers hand out with it.
 std::shared_ptr<const CellMeasure> MerlCellMeasure();
+// Whether every sample above the horizon sits at a MERL cell centre (within 1e-6 rad): samples
+// of a MERL table written by another format, which then stand for their cells as the table's do.
+bool OnMerlGrid(const std::vector<Sample>& samples);
 
 }  // namespace brdf
