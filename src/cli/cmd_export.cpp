@@ -12,12 +12,6 @@
 #include "models/model_source.h"
 
 namespace brdf::cli {
-namespace {
-
-// The grid the error is measured on when the fit's data are not at hand.
-constexpr double kFallbackGridStepDeg = 5.0;
-
-}  // namespace
 
 Command AddExportCommand(CLI::App& parent) {
   struct Options {
@@ -41,7 +35,8 @@ Command AddExportCommand(CLI::App& parent) {
   app->add_option("--illuminant", options->illuminant, "for spectral files: D65 or E")
       ->capture_default_str();
   app->add_flag("--json", options->json, "print the export report as JSON instead of the lines");
-  app->add_flag("--quiet", options->quiet, "print nothing on success");
+  app->add_flag("--quiet", options->quiet,
+                "print nothing on success but the warnings (stderr) of a lossy export");
 
   return {app, [options]() {
             const exporters::Target target = exporters::ParseTarget(options->to);
@@ -51,7 +46,7 @@ Command AddExportCommand(CLI::App& parent) {
                                                  ? exporters::ResolveFitSource(options->fit)
                                                  : options->samples;
             if (samples_path.empty()) {
-              request.samples = exporters::HemisphereGridSamples(kFallbackGridStepDeg);
+              request.samples = exporters::HemisphereGridSamples(exporters::kFallbackGridStepDeg);
             } else {
               ReadOptions read_options;
               read_options.illuminant = ParseIlluminant(options->illuminant);
@@ -60,6 +55,10 @@ Command AddExportCommand(CLI::App& parent) {
             }
             const exporters::ExportedMaterial material = exporters::ExportMaterial(request, target);
             WriteFileAtomically(options->out, [&](std::ostream& out) { out << material.text; });
+            // A lossy export is still written (exit status 0), but never silently.
+            for (const std::string& warning : material.warnings) {
+              std::cerr << "brdf export: warning: " << warning << "\n";
+            }
             if (options->quiet) return 0;
             if (options->json) {
               std::cout << exporters::ExportJson(material, options->fit, options->out,

@@ -74,6 +74,18 @@ struct GltfMaterial {
 
 Rgb Clamp01(const Rgb& rgb) { return rgb.max(0.0).min(1.0); }
 
+// The glTF file of a material whose parameters are set.
+ExportedMaterial GltfDocument(const GltfMaterial& chosen, ExportedMaterial material) {
+  nlohmann::json document;
+  document["asset"] = {{"version", "2.0"}, {"generator", "brdfkit export"}};
+  if (chosen.uses_specular_extension) {
+    document["extensionsUsed"] = {"KHR_materials_specular"};
+  }
+  document["materials"] = nlohmann::json::array({material.parameters});
+  material.text = document.dump(2) + "\n";
+  return material;
+}
+
 }  // namespace
 
 ExportedMaterial MapToGltf(const MappingInput& input) {
@@ -123,8 +135,25 @@ ExportedMaterial MapToGltf(const MappingInput& input) {
       return MappingLogRmse([&](const Vec3& wi, const Vec3& wo) { return candidate.Eval(wi, wo); },
                             input);
     };
+    // Diffuse alone (specularFactor 0): glTF's Fresnel rises to f90 = 1 at grazing in both of the
+    // others, which a lobe of small f0 (a refit of a broad lobe) does not; then this is closer.
+    GltfMaterial diffuse_only = dielectric;
+    diffuse_only.base_color = Clamp01(source.rho_d);
+    diffuse_only.specular = 0;
     const bool use_metal = source.rho_d.maxCoeff() <= 0 || error_of(metal) <= error_of(dielectric);
     chosen = use_metal ? metal : dielectric;
+    if (source.rho_d.maxCoeff() > 0 && error_of(diffuse_only) < error_of(chosen)) {
+      material.material =
+          "pbrMetallicRoughness, metallic 0, KHR_materials_specular specularFactor 0";
+      material.notes.push_back(
+          "the fit's lobe is left out (specularFactor 0, baseColor = rho_d): glTF's Fresnel "
+          "rises to 1 at grazing, and with it the lobe followed the fit less closely");
+      material.parameters = diffuse_only.Json();
+      material.eval = [diffuse_only](const Vec3& wi, const Vec3& wo) {
+        return diffuse_only.Eval(wi, wo);
+      };
+      return GltfDocument(diffuse_only, std::move(material));
+    }
     const TermDifferences terms = MeasureTermDifferences(input, chosen.Lobe(), [&](double cos_d) {
       return use_metal ? chosen.MetalFresnel(cos_d) : chosen.DielectricFresnel(cos_d);
     });
@@ -153,14 +182,7 @@ ExportedMaterial MapToGltf(const MappingInput& input) {
   }
   material.parameters = chosen.Json();
   material.eval = [chosen](const Vec3& wi, const Vec3& wo) { return chosen.Eval(wi, wo); };
-  nlohmann::json document;
-  document["asset"] = {{"version", "2.0"}, {"generator", "brdfkit export"}};
-  if (chosen.uses_specular_extension) {
-    document["extensionsUsed"] = {"KHR_materials_specular"};
-  }
-  document["materials"] = nlohmann::json::array({material.parameters});
-  material.text = document.dump(2) + "\n";
-  return material;
+  return GltfDocument(chosen, std::move(material));
 }
 
 }  // namespace brdf::exporters
