@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <sstream>
 
 #include "core/angles.h"
 #include "export/renderer_terms.h"
@@ -259,6 +260,48 @@ TEST(Export, MitsubaXmlIsWellFormed) {
     EXPECT_EQ(parsed.exit_status, 0) << fit << "\n" << parsed.err;
     EXPECT_EQ(parsed.out.substr(0, 6), "scene ") << fit;
   }
+}
+
+// The glTF file carries the material on a mesh (a unit sphere in the default scene), so that an
+// importer which makes objects keeps it. Read back by Python's base64 and struct: every vertex
+// on the unit sphere, every triangle facing outward (counter-clockwise from outside).
+TEST(Export, GltfCarriesThePreviewSphere) {
+  ScratchDir dir;
+  const std::string path =
+      dir.Write("m.gltf", Export("ggx:rho_d=0.3:f0=0.04:alpha=0.1", Target::kGltf).text);
+  const nlohmann::json document = nlohmann::json::parse(testing::ReadFileText(path));
+  EXPECT_EQ(document["scene"], 0);
+  EXPECT_EQ(document["scenes"][0]["nodes"][0], 0);
+  EXPECT_EQ(document["nodes"][0]["mesh"], 0);
+  EXPECT_EQ(document["meshes"][0]["primitives"][0]["material"], 0);
+  const testing::CommandResult checked = testing::RunCommand(
+      "/usr/bin/python3 -c '"
+      "import base64, json, struct, sys\n"
+      "d = json.load(open(sys.argv[1])); a = d[\"accessors\"]; v = d[\"bufferViews\"]\n"
+      "data = base64.b64decode(d[\"buffers\"][0][\"uri\"].split(\",\")[1])\n"
+      "n = a[0][\"count\"]; m = a[1][\"count\"]\n"
+      "p = struct.unpack_from(\"<%df\" % (3 * n), data, v[0][\"byteOffset\"])\n"
+      "i = struct.unpack_from(\"<%dH\" % m, data, v[1][\"byteOffset\"])\n"
+      "P = [p[3 * k:3 * k + 3] for k in range(n)]\n"
+      "print(n, m // 3, max(abs(sum(c * c for c in q) - 1) for q in P), end=\" \")\n"
+      "sub = lambda x, y: [x[k] - y[k] for k in range(3)]\n"
+      "out = 0\n"
+      "for t in range(0, m, 3):\n"
+      "  A, B, C = P[i[t]], P[i[t + 1]], P[i[t + 2]]; u = sub(B, A); w = sub(C, A)\n"
+      "  x = [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]\n"
+      "  out += sum(x[k] * (A[k] + B[k] + C[k]) for k in range(3)) > 0\n"
+      "print(out)' " +
+      path);
+  ASSERT_EQ(checked.exit_status, 0) << checked.err;
+  // 17 rings of 33 vertices; 16 x 32 quads of two triangles less the 2 x 32 at the poles.
+  std::istringstream numbers(checked.out);
+  int vertices = 0, triangles = 0, outward = 0;
+  double largest_norm_error = 1;
+  numbers >> vertices >> triangles >> largest_norm_error >> outward;
+  EXPECT_EQ(vertices, 17 * 33);
+  EXPECT_EQ(triangles, 16 * 32 * 2 - 2 * 32);
+  EXPECT_LT(largest_norm_error, 1e-6);
+  EXPECT_EQ(outward, triangles);
 }
 
 TEST(ExportCli, WritesTheFileAndReportsTheError) {
