@@ -1,7 +1,7 @@
 // brdf export FIT.json --to mitsuba3|pbrt-v4|gltf --out FILE [--samples FILE] [--json]: the
 // fitted material in a renderer's own terms (DESIGN §3), with the mapping said to be exact or
 // approximate, and the renderer's model, evaluated by our code, measured against the fit on the
-// fit's samples (src/export/export.h).
+// fit's samples (src/export/export.h); a warning on stderr when that error loses the fit.
 #include <iostream>
 #include <memory>
 
@@ -22,7 +22,9 @@ Command AddExportCommand(CLI::App& parent) {
   CLI::App* app = parent.add_subcommand(
       "export",
       "Write a fit (brdf fit --out FIT.json) as a Mitsuba 3, pbrt-v4 or glTF 2.0 material, say "
-      "where the mapping is exact, and measure the renderer's model against the fit");
+      "where the mapping is exact, and measure the renderer's model against the fit; warn on "
+      "stderr and in the JSON when it loses the fit (max relative error > 10, or log rmse > 2x "
+      "the fit's own and > 0.02); the file is still written, exit status 0");
   app->add_option("FIT", options->fit, "a fit report written by brdf fit --out")->required();
   app->add_option("--to", options->to,
                   "mitsuba3 (scene XML), pbrt-v4 (scene text) or gltf (glTF 2.0 JSON)")
