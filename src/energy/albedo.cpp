@@ -214,12 +214,11 @@ EnergyVerdict AlbedoCurve::verdict() const {
   const ChannelAlbedo maximum{max_albedo[worst], error_at_max[worst], theta_deg_at_max[worst],
                               worst, coverage_at_max};
   if (maximum.theta_deg > largest_measured_incidence_deg + 1e-9) {
-    verdict.reason = "the largest albedo, " + maximum.Text() +
-                     ", lies beyond the largest measured incidence (" +
-                     Fixed(largest_measured_incidence_deg, 1) +
-                     " deg), where the data are extrapolated; at the measured incidences the "
-                     "largest is " +
-                     largest->Text();
+    verdict.reason =
+        "the largest albedo, " + maximum.Text() + ", lies beyond the largest measured incidence (" +
+        Fixed(largest_measured_incidence_deg, 1) +
+        " deg), where the data are extrapolated; at the measured incidences the largest is " +
+        largest->Text();
     return verdict;
   }
   if (highest->upper() > 1.0 + kAlbedoResolution) {
@@ -234,8 +233,7 @@ EnergyVerdict AlbedoCurve::verdict() const {
   verdict.conservation = Conservation::kConserving;
   if (largest->upper() > 1.0 - kAlbedoResolution) {
     verdict.reason = "the largest albedo, " + largest->Text() +
-                     ", is 1 within twice its error "
-                     "estimate and " +
+                     ", is 1 within twice its error estimate and " +
                      Significant(kAlbedoResolution) + ": at the bound";
   } else {
     verdict.reason = "the largest albedo, " + largest->Text() + ", stays below 1 by " +

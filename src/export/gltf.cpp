@@ -246,8 +246,8 @@ ExportedMaterial MapToGltf(const MappingInput& input) {
       material.material =
           "pbrMetallicRoughness, metallic 0, KHR_materials_specular specularFactor 0";
       material.notes.push_back(
-          "the fit's lobe is left out (specularFactor 0, baseColor = rho_d): glTF's Fresnel "
-          "rises to 1 at grazing, and with it the lobe followed the fit less closely");
+          "the fit's lobe is left out (specularFactor 0, baseColor = rho_d): glTF's Fresnel rises "
+          "to 1 at grazing, and with it the lobe followed the fit less closely");
       material.parameters = diffuse_only.Json();
       material.eval = [diffuse_only](const Vec3& wi, const Vec3& wo) {
         return diffuse_only.Eval(wi, wo);
