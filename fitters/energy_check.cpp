@@ -13,7 +13,7 @@ void CheckFitEnergy(FitResult* result) {
   result->energy.albedo_error = curve.error_at_max;
   result->energy.bound = bound;
   result->energy.theta_deg_at_max = curve.theta_deg_at_max;
-  result->energy.conserving = curve.conserving();
+  result->energy.verdict = curve.verdict();
   result->energy.method = std::string("albedo integrated over ") +
                           std::to_string(curve.points.size()) + " incidence angles (" +
                           AlbedoMethodName(curve.method) + "); bound " + model.info().bound_formula;

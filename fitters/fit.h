@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/measurement.h"
+#include "energy/verdict.h"
 #include "fitters/fit_samples.h"
 #include "models/registry.h"
 
@@ -56,7 +57,7 @@ struct EnergyCheck {
   Rgb albedo_error = Rgb::Zero();  // the integrator's error estimate at the maximum
   std::array<double, 3> theta_deg_at_max = {0, 0, 0};
   Rgb bound = Rgb::Zero();  // rho_d + the lobe's largest albedo (energy_bound.h), <= 1
-  bool conserving = true;
+  EnergyVerdict verdict;    // the albedo curve's (energy/albedo.h)
   std::string method;
 };
 

@@ -86,7 +86,8 @@ nlohmann::json FitReportJson(const FitResult& fit, const std::string& source,
                     {"albedo_error", RgbJson(energy.albedo_error)},
                     {"theta_deg_at_max", energy.theta_deg_at_max},
                     {"bound", RgbJson(energy.bound)},
-                    {"conserving", energy.conserving},
+                    {"verdict", energy.verdict.name()},
+                    {"reason", energy.verdict.reason},
                     {"method", energy.method}};
   json["warnings"] = fit.warnings;
   json["source"] = source;
@@ -142,7 +143,7 @@ void PrintFitReport(std::ostream& out, const FitResult& fit, const std::string& 
   out << Format("energy      max albedo %.4f %.4f %.4f (integrated; bound %.4f %.4f %.4f): %s\n",
                 fit.energy.max_albedo[0], fit.energy.max_albedo[1], fit.energy.max_albedo[2],
                 fit.energy.bound[0], fit.energy.bound[1], fit.energy.bound[2],
-                fit.energy.conserving ? "conserving" : "NOT conserving");
+                fit.energy.verdict.Text().c_str());
   for (const std::string& warning : fit.warnings) out << "warning     " << warning << "\n";
 }
 

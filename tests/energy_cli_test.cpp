@@ -20,14 +20,14 @@ TEST(EnergyCli, JsonHasDesignFieldsAndLambertIsRhoD) {
   const testing::CommandResult result = RunBrdf("energy lambert:rho_d=0.8,0.5,0.2 --json --quiet");
   ASSERT_EQ(result.exit_status, 0) << result.err;
   const nlohmann::json json = nlohmann::json::parse(result.out);
-  for (const char* key : {"max_albedo", "theta_deg_at_max", "albedo", "conserving"}) {
+  for (const char* key : {"max_albedo", "theta_deg_at_max", "albedo", "verdict", "reason"}) {
     EXPECT_TRUE(json.contains(key)) << key;
   }
   EXPECT_EQ(json["albedo"].size(), 90u);  // default: 90 steps over 0..89 degrees
   EXPECT_EQ(json["albedo"][89]["theta_deg"].get<double>(), 89.0);
   EXPECT_NEAR(json["max_albedo"][0].get<double>(), 0.8, 1e-6);
   EXPECT_NEAR(json["albedo"][45]["rgb"][2].get<double>(), 0.2, 1e-6);
-  EXPECT_TRUE(json["conserving"].get<bool>());
+  EXPECT_EQ(json["verdict"], "conserving");
   EXPECT_EQ(json["theta_deg_at_max"].size(), 3u);
 }
 
@@ -36,10 +36,10 @@ TEST(EnergyCli, LectureBlinnPhongFactorIsNotConservingWithExitZero) {
   const testing::CommandResult result =
       RunBrdf("energy blinn-phong:rho_d=0:rho_s=8:m=100 --theta-steps 10 --quiet");
   EXPECT_EQ(result.exit_status, 0) << result.err;
-  EXPECT_NE(result.out.find("NOT conserving"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("verdict: not conserving"), std::string::npos) << result.out;
   const nlohmann::json json = nlohmann::json::parse(
       RunBrdf("energy blinn-phong:rho_d=0:rho_s=8:m=100 --theta-steps 10 --json --quiet").out);
-  EXPECT_FALSE(json["conserving"].get<bool>());
+  EXPECT_EQ(json["verdict"], "not conserving");
   EXPECT_GT(json["max_albedo"][0].get<double>(), 7.9);
 }
 
@@ -96,7 +96,7 @@ TEST(EnergyCli, MicrofacetModelStringsAreCheckedAndIntegrated) {
   const testing::CommandResult ok =
       RunBrdf("energy ggx:rho_d=0.2:f0=0.04:alpha=0.2 --theta-steps 10 --json --quiet");
   ASSERT_EQ(ok.exit_status, 0) << ok.err;
-  EXPECT_TRUE(nlohmann::json::parse(ok.out)["conserving"].get<bool>());
+  EXPECT_EQ(nlohmann::json::parse(ok.out)["verdict"], "conserving");
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ TEST(MeasuredAlbedo, MerlTableOfLambertGivesRhoD) {
     EXPECT_NEAR(point.estimate.coverage, 1.0, 1e-9);
   }
   EXPECT_TRUE(curve.warnings.empty());
-  EXPECT_TRUE(curve.conserving());
+  EXPECT_EQ(curve.verdict().conservation, Conservation::kConserving);
 }
 
 TEST(MeasuredAlbedo, MissingMerlCellsLowerCoverageAndWarn) {

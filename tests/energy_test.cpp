@@ -54,7 +54,7 @@ TEST(Albedo, LambertIsRhoDAtEveryAngleByEveryMethod) {
       EXPECT_NEAR(point.estimate.albedo[1], 0.3, 1e-6) << point.theta_deg;
       EXPECT_NEAR(point.estimate.albedo[2], 0.05, 1e-6) << point.theta_deg;
     }
-    EXPECT_TRUE(curve.conserving());
+    EXPECT_EQ(curve.verdict().conservation, Conservation::kConserving);
   }
 }
 
@@ -102,11 +102,12 @@ TEST(Albedo, LectureFactorIsCaughtAsNotConserving) {
   // The lecture's (m+8)/pi is eight times our (m+8)/(8 pi): rho_s = 8 expresses it.
   const AlbedoCurve curve =
       ModelAlbedoCurve(ParseModel("blinn-phong:rho_d=0:rho_s=8:m=50"), AlbedoOptions{});
-  EXPECT_FALSE(curve.conserving());
+  EXPECT_EQ(curve.verdict().conservation, Conservation::kNotConserving);
   EXPECT_GT(curve.max_albedo[0], 8.0 * 0.99);
   EXPECT_NEAR(curve.points[0].estimate.albedo[0], 8.0 * models::BlinnPhongNormalAlbedo(50.0), 1e-4);
-  EXPECT_NE(curve.Verdict().find("NOT conserving"), std::string::npos);
-  EXPECT_NE(curve.Summary().find("NOT conserving"), std::string::npos);
+  EXPECT_EQ(curve.verdict().Text().rfind("not conserving: albedo 8", 0), 0u)
+      << curve.verdict().Text();
+  EXPECT_NE(curve.Summary().find("not conserving"), std::string::npos);
 }
 
 TEST(Albedo, MaterialsExactlyAtTheBoundAreConserving) {
@@ -114,11 +115,14 @@ TEST(Albedo, MaterialsExactlyAtTheBoundAreConserving) {
   for (const char* model : {"lambert:rho_d=1", "phong:rho_d=0.5:rho_s=0.5:n=100",
                             "blinn-phong-exact:rho_d=0.3:rho_s=0.7:m=1000"}) {
     const AlbedoCurve curve = ModelAlbedoCurve(ParseModel(model), AlbedoOptions{});
-    EXPECT_TRUE(curve.conserving()) << model << ": " << curve.Verdict();
+    EXPECT_EQ(curve.verdict().conservation, Conservation::kConserving)
+        << model << ": " << curve.verdict().Text();
     EXPECT_NEAR(curve.max_albedo.maxCoeff(), 1.0, 1e-5) << model;
   }
   // Just above the bound, and clearly so, is not.
-  EXPECT_FALSE(ModelAlbedoCurve(ParseModel("phong:rho_d=0.5:rho_s=0.501:n=100"), {}).conserving());
+  EXPECT_EQ(
+      ModelAlbedoCurve(ParseModel("phong:rho_d=0.5:rho_s=0.501:n=100"), {}).verdict().conservation,
+      Conservation::kNotConserving);
 }
 
 TEST(Albedo, MethodsAgreeWithinTheirErrorEstimates) {

@@ -117,7 +117,7 @@ TEST(Fit, RecoversEveryModelFromNoiseFreeData) {
     const FitResult fit = FitModel(Synthesize(truth, {}), truth.name(), FitOptions{});
     EXPECT_TRUE(fit.converged) << text << ": " << fit.termination;
     ExpectRelativelyNear(fit.model, truth, 1e-4);
-    EXPECT_TRUE(fit.energy.conserving);
+    EXPECT_EQ(fit.energy.verdict.conservation, Conservation::kConserving);
   }
 }
 
@@ -221,7 +221,7 @@ TEST(Fit, EnergyBoundHoldsWhenTheDataExceedIt) {
   // Data brighter than any conserving material can be: the fit stays conserving and says so.
   const Model too_bright = ParseModel("lambert:rho_d=1.4");
   const FitResult fit = FitModel(Synthesize(too_bright, {}), "lambert", FitOptions{});
-  EXPECT_TRUE(fit.energy.conserving);
+  EXPECT_EQ(fit.energy.verdict.conservation, Conservation::kConserving);
   EXPECT_LE(fit.energy.max_albedo.maxCoeff(), 1.0);
   EXPECT_GT(fit.energy.max_albedo.minCoeff(), 0.999);
   ASSERT_FALSE(fit.warnings.empty());
@@ -634,7 +634,7 @@ TEST(FitRealData, CornellAndZemaxFitsArePinned) {
     const Measurement measurement = ReadMeasurement(testing::DataPath(expected.file));
     const FitResult fit = FitModel(measurement, "blinn-phong", FitOptions{});
     EXPECT_TRUE(fit.converged) << expected.file << ": " << fit.termination;
-    EXPECT_TRUE(fit.energy.conserving) << expected.file;
+    EXPECT_EQ(fit.energy.verdict.conservation, Conservation::kConserving) << expected.file;
     EXPECT_LT(fit.energy.max_albedo.maxCoeff(), 1.0) << expected.file;
     EXPECT_NEAR(fit.metrics.rmse, expected.rmse, 1e-3 * expected.rmse) << expected.file;
     for (double p : fit.model.params()) EXPECT_TRUE(std::isfinite(p)) << expected.file;
@@ -664,7 +664,7 @@ void ExpectPinnedMicrofacetFits(const std::string& model) {
     const FitResult fit = FitModel(measurement, model, FitOptions{});
     const double rmse = model == "ggx" ? expected.ggx_rmse : expected.beckmann_rmse;
     EXPECT_TRUE(fit.converged) << expected.file << ": " << fit.termination;
-    EXPECT_TRUE(fit.energy.conserving) << expected.file;
+    EXPECT_EQ(fit.energy.verdict.conservation, Conservation::kConserving) << expected.file;
     EXPECT_LT(fit.energy.max_albedo.maxCoeff(), 1.0) << expected.file;
     EXPECT_TRUE(fit.stderr_available) << expected.file << ": " << fit.stderr_note;
     EXPECT_NEAR(fit.metrics.rmse, rmse, 1e-3 * rmse) << expected.file << " " << model;
@@ -687,7 +687,7 @@ TEST(FitRealData, AutoClimbsToAMicrofacetRungOnGlossyPaintAndZemax) {
         << selection.reason;
     EXPECT_NE(selection.reason.find("Fresnel and masking lower the rmse"), std::string::npos)
         << selection.reason;
-    EXPECT_TRUE(fit.energy.conserving) << file;
+    EXPECT_EQ(fit.energy.verdict.conservation, Conservation::kConserving) << file;
   }
 }
 
@@ -706,7 +706,7 @@ TEST(FitCli, WritesTheReportAndItIsAcceptedAsAModel) {
   }
   EXPECT_EQ(json["params"]["rho_d"].size(), 3u);
   EXPECT_TRUE(json["params"]["n"].is_number());
-  EXPECT_TRUE(json["energy"]["conserving"].get<bool>());
+  EXPECT_EQ(json["energy"]["verdict"], "conserving");
   const Model model = LoadModel(report);
   EXPECT_EQ(model.name(), "phong");
   EXPECT_EQ(model.Param("n"), json["params"]["n"].get<double>());
@@ -757,7 +757,7 @@ TEST(FitEnergy, IntegratedMaximumIsTheClosedFormBound) {
       EXPECT_NEAR(fit.energy.max_albedo[c], fit.energy.bound[c], 1e-4) << text;
       EXPECT_NEAR(fit.energy.theta_deg_at_max[c], 0.0, 1e-9) << text;
     }
-    EXPECT_TRUE(fit.energy.conserving);
+    EXPECT_EQ(fit.energy.verdict.conservation, Conservation::kConserving);
   }
 }
 

@@ -267,7 +267,7 @@ void ExpectRandomParameterizationPointsConserve() {
       if (point == 0 && a % 40 == 0) {
         const Model material(info, std::vector<double>(params, params + M::kNumParams));
         const AlbedoCurve curve = ModelAlbedoCurve(material, AlbedoOptions{});
-        EXPECT_TRUE(curve.conserving()) << curve.Summary();
+        EXPECT_EQ(curve.verdict().conservation, Conservation::kConserving) << curve.Summary();
         EXPECT_LE(curve.max_albedo.maxCoeff(), 1.0 + 1e-6) << curve.Summary();
       }
     }

@@ -86,8 +86,7 @@ void WriteAlbedoPlot(const AlbedoCurve& curve, const std::string& path) {
         0.55);
   Label(&image, "theta (deg)", cv::Point(kWidth / 2 - 40, kHeight - 15));
   Label(&image, "albedo", cv::Point(8, kTop - 12));
-  Label(&image, curve.conserving() ? "conserving" : "NOT conserving",
-        cv::Point(kLeft + 10, kTop + 25), 0.55);
+  Label(&image, curve.verdict().name(), cv::Point(kLeft + 10, kTop + 25), 0.55);
 
   chart::WritePng(image, path);
 }

@@ -41,9 +41,9 @@ namespace fs = std::filesystem;
 // the same double; a field holding a comma or a quote is quoted (RFC 4180).
 const std::vector<std::string>& TableColumns() {
   static const std::vector<std::string> columns = {
-      "file",       "report",   "status",     "model",        "converged",    "params",
-      "rmse",       "log_rmse", "cosine_l2",  "max_albedo_r", "max_albedo_g", "max_albedo_b",
-      "conserving", "samples",  "iterations", "time_s",       "error"};
+      "file",   "report",   "status",     "model",        "converged",    "params",
+      "rmse",   "log_rmse", "cosine_l2",  "max_albedo_r", "max_albedo_g", "max_albedo_b",
+      "energy", "samples",  "iterations", "time_s",       "error"};
   return columns;
 }
 
@@ -172,7 +172,7 @@ std::vector<nlohmann::json> TableRow(const std::string& file, const std::string&
   row[7] = report["metrics"]["log_rmse"];
   row[8] = report["metrics"]["cosine_l2"];
   for (int c = 0; c < 3; ++c) row[9 + c] = report["energy"]["max_albedo"][c];
-  row[12] = report["energy"]["conserving"];
+  row[12] = report["energy"]["verdict"];
   row[13] = report["samples"];
   row[14] = report["iterations"];
   row[15] = report["time_s"];
@@ -217,7 +217,8 @@ Command AddBatchCommand(CLI::App& parent) {
   app->add_flag("--quiet", options->quiet, "no progress bar on stderr");
   app->footer(
       "table.csv columns: file, report, status (ok, not-converged or error), model, converged, "
-      "params (model string), rmse, log_rmse, cosine_l2, max_albedo_r/g/b, conserving, samples, "
+      "params (model string), rmse, log_rmse, cosine_l2, max_albedo_r/g/b, energy (conserving, not "
+      "conserving or undecided), samples, "
       "iterations, time_s (wall clock; the only column that changes between runs), error. Rows "
       "follow the order of FILE. A file that fails is reported on stderr and in its row; the "
       "other files are still fitted and written; exit status 2 if an input was bad, else 3 if a "

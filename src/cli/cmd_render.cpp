@@ -38,7 +38,7 @@ std::string PresetHelp() {
 void WarnIfCreatingEnergy(const std::string& spec) {
   if (!IsModelSpec(spec)) return;  // measured data are checked by `brdf energy FILE`
   const AlbedoCurve curve = ModelAlbedoCurve(LoadModel(spec), AlbedoOptions());
-  if (curve.conserving()) return;
+  if (curve.verdict().conservation != Conservation::kNotConserving) return;
   int channel = 0;
   for (int c = 1; c < 3; ++c)
     channel = curve.max_albedo[c] > curve.max_albedo[channel] ? c : channel;

@@ -179,7 +179,7 @@ void FitDataset(const Measurement& measurement, const DemoOptions& options,
     WriteFileAtomically(out_dir + "/" + path, [&](std::ostream& out) { out << material.text; });
     dataset->exports.push_back({exporters::TargetName(target), path, material.material,
                                 material.exact, material.error.log_rmse,
-                                material.error.max_relative});
+                                material.error.max_relative, material.warnings});
   }
   if (!ExtractSlices(measurement).empty()) {
     const std::string slices = "images/" + dataset->name + "-slices.png";
@@ -380,7 +380,7 @@ void PrintDemoSummary(std::ostream& out, const DemoResult& result) {
     out << Format("%-16s %-9s %8zu %-17s %10.4g %10.4g %-22s %-10s %7s\n",
                   dataset.name.substr(0, 16).c_str(), dataset.kind.c_str(), dataset.samples,
                   fit.model.name().c_str(), fit.metrics.rmse, fit.metrics.log_rmse, albedo.c_str(),
-                  fit.energy.conserving ? "conserving" : "NOT", truth.c_str());
+                  fit.energy.verdict.name(), truth.c_str());
   }
   out << "(truth: largest relative error of the truth's own model fitted to the simulated "
          "measurement)\n";
@@ -403,7 +403,8 @@ void WriteDemoSummaryJson(const DemoResult& result, const DemoOptions& options) 
                          {"material", exported.material},
                          {"exact", exported.exact},
                          {"log_rmse", exported.log_rmse},
-                         {"max_relative", exported.max_relative}});
+                         {"max_relative", exported.max_relative},
+                         {"warnings", exported.warnings}});
     }
     json["datasets"].push_back({{"name", dataset.name},
                                 {"kind", dataset.kind},
@@ -412,7 +413,8 @@ void WriteDemoSummaryJson(const DemoResult& result, const DemoOptions& options) 
                                 {"chosen", fit.model.name()},
                                 {"model", fit.model.ToString()},
                                 {"rmse", fit.metrics.rmse},
-                                {"conserving", fit.energy.conserving},
+                                {"energy", fit.energy.verdict.name()},
+                                {"energy_reason", fit.energy.verdict.reason},
                                 {"truth", dataset.truth},
                                 {"truth_error", dataset.truth_error},
                                 {"fits", dataset.fit_paths},

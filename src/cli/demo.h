@@ -46,6 +46,7 @@ struct DemoExport {
   std::string material;  // the renderer's material
   bool exact = false;
   double log_rmse = 0, max_relative = 0;
+  std::vector<std::string> warnings;  // the export loses the material (export.h)
 };
 
 struct DemoDataset {

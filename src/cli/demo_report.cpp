@@ -33,6 +33,14 @@ std::string Escape(const std::string& text) {
   return escaped;
 }
 
+// The verdict in a word, marked unless conserving, with its reason on hover and below the table.
+std::string EnergyCell(const EnergyVerdict& verdict) {
+  const std::string name = Escape(verdict.name());
+  const std::string word =
+      verdict.conservation == Conservation::kConserving ? name : "<b>" + name + "</b>";
+  return "<span title=\"" + Escape(verdict.reason) + "\">" + word + "</span>";
+}
+
 std::string Triple(const Rgb& rgb) { return Format("%.3f, %.3f, %.3f", rgb[0], rgb[1], rgb[2]); }
 
 void WriteBundledTable(std::ostream& out, const DemoResult& result) {
@@ -79,9 +87,8 @@ void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
         << (chosen ? " &#9733;" : "") << "</td><td>" << Format("%.6g", fit.bic) << "</td><td>"
         << Format("%.4g", fit.metrics.rmse) << "</td><td>" << Format("%.4g", fit.metrics.log_rmse)
         << "</td><td><code>" << Escape(fit.model.ToString(4)) << "</code></td><td>"
-        << Triple(fit.energy.max_albedo) << "</td><td>"
-        << (fit.energy.conserving ? "conserving" : "<b>NOT conserving</b>") << "</td><td>"
-        << (fit.converged ? "yes" : "<b>no</b>") << "</td><td><a href=\""
+        << Triple(fit.energy.max_albedo) << "</td><td>" << EnergyCell(fit.energy.verdict)
+        << "</td><td>" << (fit.converged ? "yes" : "<b>no</b>") << "</td><td><a href=\""
         << Escape(dataset.fit_paths[k]) << "\">json</a></td></tr>\n";
   }
   out << "</table>\n";
@@ -95,9 +102,16 @@ void WriteDataset(std::ostream& out, const DemoDataset& dataset) {
           << (exported.exact ? "exact" : "approximate") << ", log rmse "
           << Format("%.4g", exported.log_rmse) << ", max relative error "
           << Format("%.4g", exported.max_relative);
+      for (const std::string& warning : exported.warnings) {
+        out << " <span class=\"warning\">&#9888; " << Escape(warning) << "</span>";
+      }
     }
     out << "</p>\n";
   }
+  const EnergyVerdict& verdict = dataset.fits[dataset.chosen].energy.verdict;
+  out << "<p" << (verdict.conservation == Conservation::kConserving ? "" : " class=\"warning\"")
+      << ">energy of the " << Escape(dataset.fits[dataset.chosen].model.name())
+      << " fit: " << Escape(verdict.Text()) << "</p>\n";
   for (const std::string& warning : dataset.fits[dataset.chosen].warnings) {
     out << "<p class=\"warning\">" << Escape(warning) << "</p>\n";
   }

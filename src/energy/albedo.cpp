@@ -7,6 +7,7 @@
 #include <functional>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "core/angles.h"
@@ -156,45 +157,102 @@ std::vector<double> AlbedoOptions::ThetaDegrees() const {
   return thetas;
 }
 
-bool AlbedoCurve::conserving() const {
-  // Only an excess larger than twice its error estimate counts against a material: a material
-  // exactly at the bound (lambert:rho_d=1, phong with rho_d + rho_s = 1) must not flip with
-  // rounding.
-  return (max_albedo - 1.0 <= 2.0 * error_at_max).all();
+namespace {
+
+// One channel's albedo at one incidence, with its error estimate.
+struct ChannelAlbedo {
+  double albedo = 0, error = 0, theta_deg = 0;
+  int channel = 0;
+  double coverage = 1.0;
+
+  double lower() const { return albedo - 2.0 * error; }
+  double upper() const { return albedo + 2.0 * error; }
+  // "1.079 ± 0.042 (r, theta 78.0 deg)"
+  std::string Text() const {
+    return Fixed(albedo, 4) + " ± " + Significant(error) + " (" + kChannelNames[channel] +
+           ", theta " + Fixed(theta_deg, 1) + " deg)";
+  }
+  // Holes in the data make the albedo less certain than its error estimate says: "" or a clause.
+  std::string CoverageCaveat() const {
+    if (coverage >= kCoverageWarning) return "";
+    return "; the data there cover only " + Fixed(100 * coverage, 1) +
+           "% of the cosine-weighted hemisphere, the rest extrapolated or zero";
+  }
+};
+
+}  // namespace
+
+EnergyVerdict AlbedoCurve::verdict() const {
+  EnergyVerdict verdict;
+  // The albedos the data decide: those at measured incidences. Of them, the one most surely
+  // above 1, the one that may lie highest, and the largest.
+  std::optional<ChannelAlbedo> surest, highest, largest;
+  for (const AlbedoPoint& point : points) {
+    if (point.theta_deg > largest_measured_incidence_deg + 1e-9) continue;
+    for (int c = 0; c < 3; ++c) {
+      const ChannelAlbedo value{point.estimate.albedo[c], point.estimate.error[c], point.theta_deg,
+                                c, point.estimate.coverage};
+      if (!surest || value.lower() > surest->lower()) surest = value;
+      if (!highest || value.upper() > highest->upper()) highest = value;
+      if (!largest || value.albedo > largest->albedo) largest = value;
+    }
+  }
+  if (!largest) {
+    verdict.reason = "no albedo was computed at a measured incidence (the data reach " +
+                     Fixed(largest_measured_incidence_deg, 1) + " deg)";
+    return verdict;
+  }
+  if (surest->lower() > 1.0 + kAlbedoResolution) {
+    verdict.conservation = Conservation::kNotConserving;
+    verdict.reason = "albedo " + surest->Text() + " exceeds 1 by " +
+                     Significant(surest->albedo - 1.0) + ", more than twice its error estimate" +
+                     surest->CoverageCaveat();
+    return verdict;
+  }
+  int worst = 0;
+  max_albedo.maxCoeff(&worst);
+  const ChannelAlbedo maximum{max_albedo[worst], error_at_max[worst], theta_deg_at_max[worst],
+                              worst, coverage_at_max};
+  if (maximum.theta_deg > largest_measured_incidence_deg + 1e-9) {
+    verdict.reason =
+        "the largest albedo, " + maximum.Text() + ", lies beyond the largest measured incidence (" +
+        Fixed(largest_measured_incidence_deg, 1) +
+        " deg), where the data are extrapolated; at the measured incidences the largest is " +
+        largest->Text();
+    return verdict;
+  }
+  if (highest->upper() > 1.0 + kAlbedoResolution) {
+    // The largest albedo when it is the one that straddles 1, else the one that reaches highest.
+    const ChannelAlbedo& cited = largest->upper() > 1.0 + kAlbedoResolution ? *largest : *highest;
+    verdict.reason = "albedo " + cited.Text() + " lies between " + Significant(cited.lower()) +
+                     " and " + Significant(cited.upper()) +
+                     " within twice its error estimate, on both sides of 1" +
+                     cited.CoverageCaveat();
+    return verdict;
+  }
+  verdict.conservation = Conservation::kConserving;
+  if (largest->upper() > 1.0 - kAlbedoResolution) {
+    verdict.reason = "the largest albedo, " + largest->Text() +
+                     ", is 1 within twice its error estimate and " +
+                     Significant(kAlbedoResolution) + ": at the bound";
+  } else {
+    verdict.reason = "the largest albedo, " + largest->Text() + ", stays below 1 by " +
+                     Significant(1.0 - largest->albedo) + ", more than twice its error estimate";
+  }
+  if (largest_measured_incidence_deg < 90.0) {
+    verdict.reason += " over the measured incidences (up to " +
+                      Fixed(largest_measured_incidence_deg, 1) + " deg)";
+  }
+  verdict.reason += largest->CoverageCaveat();
+  return verdict;
 }
 
 double AlbedoCurve::excess() const { return max_albedo.maxCoeff() - 1.0; }
 
-std::string AlbedoCurve::Verdict() const {
-  int worst = 0;
-  max_albedo.maxCoeff(&worst);
-  const double amount = std::abs(excess());
-  const std::string max_text = "max albedo " + Fixed(max_albedo[worst], 6);
-  const std::string error_text = Significant(error_at_max[worst]);
-  std::string verdict;
-  if (!conserving()) {
-    verdict = "NOT conserving: " + max_text + " (" + kChannelNames[worst] + ", theta " +
-              Fixed(theta_deg_at_max[worst], 1) + " deg) exceeds 1 by " + Significant(amount);
-  } else if (excess() > 0.0) {
-    verdict = "conserving at the bound: " + max_text + " exceeds 1 by " + Significant(amount) +
-              ", less than twice its error estimate (" + error_text + ")";
-  } else {
-    verdict = "conserving: " + max_text + " <= 1 (margin " + Significant(amount) + ")";
-    if (amount <= 2.0 * error_at_max[worst]) {
-      verdict += ", at the bound within twice the error estimate (" + error_text + ")";
-    }
-  }
-  if (coverage_at_max < kCoverageWarning) {
-    verdict += "; the maximum lies where the data cover only " + Fixed(100 * coverage_at_max, 1) +
-               "% of the hemisphere, so it is not decisive";
-  }
-  return verdict;
-}
-
 std::string AlbedoCurve::Summary() const {
   return source + " [" + AlbedoMethodName(method) + "]: max albedo " + Rgb3(max_albedo, 6) +
          " at theta " + Fixed(theta_deg_at_max[0], 1) + " " + Fixed(theta_deg_at_max[1], 1) + " " +
-         Fixed(theta_deg_at_max[2], 1) + " deg; " + Verdict();
+         Fixed(theta_deg_at_max[2], 1) + " deg; " + verdict().Text();
 }
 
 std::string AlbedoCurve::Report() const {
@@ -221,7 +279,7 @@ std::string AlbedoCurve::Report() const {
         << " at theta " << Fixed(theta_deg_at_max[c], 2) << " deg\n";
   }
   out << "BRDF evaluations: " << evaluations << "\n";
-  out << Verdict() << "\n";
+  out << "verdict: " << verdict().Text() << "\n";
   return out.str();
 }
 
@@ -346,6 +404,7 @@ AlbedoCurve MeasuredAlbedoCurve(const MeasuredBrdf& measured, const AlbedoOption
         return MeasuredDirectionalAlbedo(measured, theta_o, options, stream);
       });
   curve.notes = measured.notes;
+  curve.largest_measured_incidence_deg = measured.largest_incidence_deg;
   FinishAlbedoCurve(&curve);
   return curve;
 }

@@ -16,6 +16,7 @@
 #include "energy/integrand.h"
 #include "energy/lobe_quadrature.h"
 #include "energy/measured.h"
+#include "energy/verdict.h"
 #include "models/registry.h"
 
 namespace brdf {
@@ -43,6 +44,12 @@ struct AlbedoOptions {
   std::vector<double> ThetaDegrees() const;
 };
 
+// An albedo within this of 1 is at the bound: ten times the quadrature's default tolerance
+// (lobe_quadrature.h), so that a material exactly at the bound (lambert:rho_d=1, phong with
+// rho_d + rho_s = 1) reads as conserving whatever the rounding, while an excess of 0.001 is
+// still found.
+inline constexpr double kAlbedoResolution = 1e-4;
+
 struct AlbedoPoint {
   double theta_deg = 0;
   AlbedoEstimate estimate;
@@ -63,13 +70,21 @@ struct AlbedoCurve {
   double coverage_at_max = 1.0;  // at the angle of the largest channel's maximum
   int64_t evaluations = 0;
 
-  // a <= 1 in every channel at every angle (DESIGN §1), up to twice the error estimate: only a
-  // significant excess makes a material non-conserving.
-  bool conserving() const;
+  // The largest incidence the data were measured at (90 for a model): beyond it the curve is
+  // the interpolation's extrapolation, which cannot decide the verdict.
+  double largest_measured_incidence_deg = 90.0;
+
+  // The verdict (verdict.h), judged on twice each albedo's error estimate:
+  //  - not conserving when an albedo at a measured incidence exceeds 1 by more than that;
+  //  - undecided when the largest albedo lies beyond the measured incidences, or when an albedo's
+  //    error estimate straddles 1;
+  //  - conserving otherwise.
+  // Where the data cover less than 99 % of the hemisphere at the albedo the verdict rests on,
+  // the reason says so.
+  // Albedos within kAlbedoResolution of 1 are at the bound, neither excess nor margin.
+  EnergyVerdict verdict() const;
   // Largest max_albedo - 1 over the channels: > 0 is the excess, < 0 the margin.
   double excess() const;
-  // "conserving ..." or "NOT conserving ...", with the amount and the error estimate.
-  std::string Verdict() const;
   // One line: source, method, max albedo per channel and where, the verdict.
   std::string Summary() const;
   // The whole curve as a table, then notes, warnings, maximum and verdict.

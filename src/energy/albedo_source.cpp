@@ -23,6 +23,7 @@ nlohmann::json AlbedoCurveJson(const AlbedoCurve& curve, double seconds) {
                       {"error", RgbJson(point.estimate.error)},
                       {"coverage", point.estimate.coverage}});
   }
+  const EnergyVerdict verdict = curve.verdict();
   return {{"source", curve.source},
           {"method", AlbedoMethodName(curve.method)},
           {"max_albedo", RgbJson(curve.max_albedo)},
@@ -30,9 +31,10 @@ nlohmann::json AlbedoCurveJson(const AlbedoCurve& curve, double seconds) {
           {"theta_deg_at_max",
            {curve.theta_deg_at_max[0], curve.theta_deg_at_max[1], curve.theta_deg_at_max[2]}},
           {"albedo", albedo},
-          {"conserving", curve.conserving()},
+          {"verdict", verdict.name()},
+          {"reason", verdict.reason},
           {"excess", curve.excess()},
-          {"verdict", curve.Verdict()},
+          {"largest_measured_incidence_deg", curve.largest_measured_incidence_deg},
           {"min_coverage", curve.min_coverage},
           {"notes", curve.notes},
           {"warnings", curve.warnings},

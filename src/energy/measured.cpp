@@ -181,6 +181,20 @@ class ScatteredInterpolator {
   double spacing_ = 0, coverage_radius_ = 0;
 };
 
+// The largest polar angle of a present sample's wi, and of its wo when `reciprocal`; 90 when the
+// reader kept no samples in memory (a table's sample source), whose table then spans the
+// hemisphere.
+double LargestIncidenceDeg(const Measurement& measurement, bool reciprocal) {
+  if (measurement.samples.empty()) return 90.0;
+  double largest = 0;
+  for (const Sample& sample : measurement.samples) {
+    if (sample.missing) continue;
+    largest = std::max(largest, Theta(sample.wi));
+    if (reciprocal) largest = std::max(largest, Theta(sample.wo));
+  }
+  return RadToDeg(largest);
+}
+
 // Degrees to one decimal, for notes.
 std::string OneDecimal(double degrees) { return FormatNumber(std::round(degrees * 10) / 10); }
 
@@ -215,6 +229,7 @@ MeasuredBrdf ScatteredMeasuredBrdf(const Measurement& measurement) {
     return (*interpolator)(wi, wo);
   };
   measured.coordinates = {LobeFrame::kHalfVector, 0.0};
+  measured.largest_incidence_deg = LargestIncidenceDeg(measurement, /*reciprocal=*/true);
   measured.notes.push_back(
       "scattered samples: inverse-distance weighting of the " + std::to_string(kNeighbours) +
       " nearest of " + std::to_string(interpolator->size()) +
@@ -230,7 +245,9 @@ MeasuredBrdf ScatteredMeasuredBrdf(const Measurement& measurement) {
 
 MeasuredBrdf MeasuredBrdfOf(const Measurement& measurement) {
   if (measurement.tabulated != nullptr) {
-    return TabulatedMeasuredBrdf(measurement.tabulated, measurement.source);
+    MeasuredBrdf measured = TabulatedMeasuredBrdf(measurement.tabulated, measurement.source);
+    measured.largest_incidence_deg = LargestIncidenceDeg(measurement, /*reciprocal=*/false);
+    return measured;
   }
   return ScatteredMeasuredBrdf(measurement);
 }

@@ -23,6 +23,9 @@ struct MeasuredBrdf {
   LobeCoordinates coordinates;  // where the quadrature integrates (half-vector space)
   // What the interpolation assumes and where the data end, for the report.
   std::vector<std::string> notes;
+  // The largest incidence a present sample was measured at (counting the reciprocal of each
+  // sample where the interpolation assumes reciprocity): the albedo beyond it is extrapolated.
+  double largest_incidence_deg = 90.0;
 };
 
 MeasuredBrdf TabulatedMeasuredBrdf(std::shared_ptr<const TabulatedBrdf> tabulated,

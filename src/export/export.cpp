@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "core/enum_names.h"
 #include "core/errors.h"
+#include "core/format.h"
 #include "core/text.h"
 #include "export/targets.h"
 #include "fitters/fit.h"
+#include "models/model_string.h"
+#include "models/term.h"
 
 namespace brdf::exporters {
 namespace {
@@ -30,16 +34,29 @@ constexpr size_t kRefitSamples = 1000;
 // Relative errors are taken against max(f_fit, this share of the fit's largest value): below it a
 // value is too dark for a relative difference to mean anything a renderer shows.
 constexpr double kRelativeFloorShare = 1e-3;
+// The lobe-matched map tries alphas half_width_alpha * ratio^k, |k| <= steps: a factor 4 either
+// way in steps of 2^(1/4), enough to bracket a power-cosine lobe's best ggx stand-in, whose tails
+// differ from its own.
+constexpr int kLobeAlphaSteps = 8;
+constexpr double kLobeAlphaRatio = 1.189207115002721;  // 2^(1/4)
 
 Rgb ParamRgb(const Model& model, const char* name) {
   return Rgb(model.Param(name, 0), model.Param(name, 1), model.Param(name, 2));
 }
 
-// The fit itself when the target holds its distribution; otherwise ggx refitted to the fit's
-// values on the mapping samples, with the log loss the demo fits with.
 // The ggx refit of a fit no target holds (see SourceFor), on at most kRefitSamples samples.
 MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSample>& all_samples,
                             const std::vector<Rgb>& all_fit_values);
+// ggx with the fit's own diffuse term and a lobe matched to the fit's, channel by channel.
+MicrofacetSource LobeMatchedGgx(const Model& fit, const std::vector<fitters::FitSample>& samples,
+                                const std::vector<Rgb>& fit_values);
+// The weighted log-rmse of a ggx source against the fit's values (MappingLogRmse's measure).
+double GgxLogRmse(const MicrofacetSource& source, const Model& fit,
+                  const std::vector<fitters::FitSample>& samples,
+                  const std::vector<Rgb>& fit_values);
+
+// The fit itself when the target holds its distribution; otherwise ggx, whichever of the general
+// refit and the lobe-matched map follows the fit's values on the mapping samples more closely.
 
 MicrofacetSource SourceFor(const Model& fit, Target target,
                            const std::vector<fitters::FitSample>& samples,
@@ -60,8 +77,84 @@ MicrofacetSource SourceFor(const Model& fit, Target target,
     source.alpha = fit.Param("alpha");
     return source;
   }
-  if (refit_cache->model.empty()) *refit_cache = RefitAsGgx(fit, samples, fit_values);
+  if (refit_cache->model.empty()) {
+    const MicrofacetSource refit = RefitAsGgx(fit, samples, fit_values);
+    const MicrofacetSource matched = LobeMatchedGgx(fit, samples, fit_values);
+    *refit_cache =
+        GgxLogRmse(matched, fit, samples, fit_values) < GgxLogRmse(refit, fit, samples, fit_values)
+            ? matched
+            : refit;
+  }
   return *refit_cache;
+}
+
+// The ggx alpha whose lobe has the fit's half width (Ggx::AlphaEquivalentExponent inverted).
+double HalfWidthGgxAlpha(const Model& fit) {
+  const double exponent = std::max(fit.info().EquivalentExponent(fit.params().data()), 1.0);
+  return std::sqrt(2.0 * std::log(2.0) / ((std::sqrt(2.0) - 1.0) * exponent));
+}
+
+Model GgxModel(const Rgb& rho_d, const Rgb& f0, double alpha) {
+  auto rgb = [](const Rgb& value) {
+    return Format("%.17g,%.17g,%.17g", value[0], value[1], value[2]);
+  };
+  return ParseModel("ggx:rho_d=" + rgb(rho_d) + ":f0=" + rgb(f0) +
+                    ":alpha=" + Format("%.17g", alpha));
+}
+
+double GgxLogRmse(const MicrofacetSource& source, const Model& fit,
+                  const std::vector<fitters::FitSample>& samples,
+                  const std::vector<Rgb>& fit_values) {
+  const Model ggx = GgxModel(source.rho_d, source.f0, source.alpha);
+  const MappingInput input{source, fit, samples, fit_values};
+  return MappingLogRmse([&](const Vec3& wi, const Vec3& wo) { return ggx.Eval(wi, wo); }, input);
+}
+
+// Every lambert-plus-lobe model shares our lambert term, so rho_d carries over exactly, colour
+// and all. Schlick's F makes the ggx lobe affine in f0, lobe = f0 A + B (A, B from the lobe
+// evaluated at f0 = 1 and 0), so for each alpha on a log grid about the fit's half width the f0
+// of each channel is weighted least squares on the linearised log loss (FitDiffuseScale's
+// weights), clamped to [0, 1]; the alpha whose result follows the fit best is kept.
+MicrofacetSource LobeMatchedGgx(const Model& fit, const std::vector<fitters::FitSample>& samples,
+                                const std::vector<Rgb>& fit_values) {
+  MicrofacetSource best;
+  best.model = "ggx";
+  best.has_lobe = true;
+  best.rho_d = ParamRgb(fit, "rho_d");
+  double best_error = std::numeric_limits<double>::infinity();
+  const double half_width_alpha = HalfWidthGgxAlpha(fit);
+  for (int step = -kLobeAlphaSteps; step <= kLobeAlphaSteps; ++step) {
+    const double alpha = std::clamp(half_width_alpha * std::pow(kLobeAlphaRatio, step),
+                                    models::kMinFitRoughness, models::kMaxFitRoughness);
+    const Model white = GgxModel(Rgb::Zero(), Rgb::Ones(), alpha);
+    const Model black = GgxModel(Rgb::Zero(), Rgb::Zero(), alpha);
+    Rgb numerator = Rgb::Zero(), denominator = Rgb::Zero();
+    for (size_t k = 0; k < samples.size(); ++k) {
+      const fitters::FitSample& sample = samples[k];
+      const Rgb b = black.Eval(sample.wi, sample.wo);
+      const Rgb a = white.Eval(sample.wi, sample.wo) - b;
+      const double c = sample.cos_theta_i();
+      const Rgb target = fit_values[k] - best.rho_d * kInvPi - b;
+      const Rgb w = sample.weight * (c / (1.0 + fit_values[k] * c)).square();
+      numerator += w * a * target;
+      denominator += w * a * a;
+    }
+    MicrofacetSource candidate = best;
+    candidate.alpha = alpha;
+    for (int ch = 0; ch < 3; ++ch) {
+      candidate.f0[ch] =
+          denominator[ch] > 0 ? std::clamp(numerator[ch] / denominator[ch], 0.0, 1.0) : 0.0;
+    }
+    const double error = GgxLogRmse(candidate, fit, samples, fit_values);
+    if (error < best_error) {
+      best_error = error;
+      best = candidate;
+    }
+  }
+  best.via = "ggx with the " + fit.name() + " fit's rho_d and its lobe matched per channel on " +
+             std::to_string(samples.size()) + " of its samples (" +
+             GgxModel(best.rho_d, best.f0, best.alpha).ToString(4) + ")";
+  return best;
 }
 
 MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSample>& all_samples,
@@ -87,11 +180,14 @@ MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSamp
   fitters::FitOptions options;
   options.loss = fitters::Loss::kLog;
   options.max_samples = 0;
-  // Starts around the ggx alpha whose lobe has the fit's half width (Ggx::
-  // AlphaEquivalentExponent inverted): the refit follows a known lobe, not unknown data.
-  const double exponent = std::max(fit.info().EquivalentExponent(fit.params().data()), 1.0);
-  const double alpha = std::sqrt(2.0 * std::log(2.0) / ((std::sqrt(2.0) - 1.0) * exponent));
-  options.start_alphas = {0.5 * alpha, alpha, 2.0 * alpha};
+  // Starts around the ggx alpha whose lobe has the fit's half width: the refit follows a known
+  // lobe, not unknown data.
+  const double alpha = HalfWidthGgxAlpha(fit);
+  options.start_alphas.clear();
+  for (double start : {0.5 * alpha, alpha, 2.0 * alpha}) {
+    options.start_alphas.push_back(
+        std::clamp(start, models::kMinFitRoughness, models::kMaxFitRoughness));
+  }
   const fitters::FitResult refit = fitters::FitPreparedSamples(prepared, "ggx", options);
   source.model = "ggx";
   source.has_lobe = true;
@@ -120,6 +216,7 @@ void AnnotateText(const Model& fit, const std::string& samples_origin, ExportedM
       "measured on " + samples_origin + ": log-rmse " + Num(m->error.log_rmse) +
           ", max relative error " + Num(m->error.max_relative)};
   if (!m->source.via.empty()) lines.push_back("mapped from " + m->source.via);
+  for (const std::string& warning : m->warnings) lines.push_back("WARNING: " + warning);
   for (const std::string& note : m->notes) lines.push_back(note);
   switch (m->target) {
     case Target::kMitsuba3: {
@@ -193,6 +290,7 @@ ExportSamples HemisphereGridSamples(double step_deg) {
       }
     }
   }
+  result.has_data = false;
   result.origin = std::to_string(result.samples.size()) + " directions of a " +
                   FormatNumber(step_deg) + "-degree hemisphere grid (the fit's data not found)";
   return result;
@@ -225,6 +323,39 @@ ExportError MeasureExportError(const std::function<Rgb(const Vec3&, const Vec3&)
   return error;
 }
 
+double FitLogRmse(const Model& fit, const std::vector<fitters::FitSample>& samples) {
+  double sum = 0, weight = 0;
+  for (const fitters::FitSample& sample : samples) {
+    const double c = sample.cos_theta_i();
+    const Rgb f = fit.Eval(sample.wi, sample.wo);
+    const Rgb log_difference = (1.0 + f * c).log() - (1.0 + (sample.value * c).max(-0.999)).log();
+    sum += sample.weight * log_difference.square().sum();
+    weight += 3 * sample.weight;
+  }
+  return weight > 0 ? std::sqrt(sum / weight) : 0.0;
+}
+
+std::vector<std::string> ExportWarnings(const ExportError& error, double fit_log_rmse) {
+  std::vector<std::string> warnings;
+  if (error.max_relative > kMaxRelativeWarning) {
+    warnings.push_back("the renderer's material differs from the fit by up to " +
+                       Num(error.max_relative) + " times the fit's value (more than " +
+                       Num(kMaxRelativeWarning) + "): it does not keep the fitted material");
+  }
+  const double allowed = std::max(kLogRmseWarningFloor, kLogRmseWarningFactor * fit_log_rmse);
+  if (error.log_rmse > allowed) {
+    warnings.push_back(
+        "the renderer's material is " + Num(error.log_rmse) + " from the fit in log-rmse" +
+        (fit_log_rmse >= 0
+             ? ", more than " + Num(kLogRmseWarningFactor) +
+                   " times the fit's own distance to the data (" + Num(fit_log_rmse) + ")"
+             : std::string()) +
+        (allowed == kLogRmseWarningFloor ? " and above " + Num(kLogRmseWarningFloor) : "") +
+        ": the export loses more than the fit did");
+  }
+  return warnings;
+}
+
 ExportedMaterial ExportMaterial(const ExportRequest& request, Target target) {
   return ExportMaterials(request, {target}).front();
 }
@@ -241,6 +372,7 @@ std::vector<ExportedMaterial> ExportMaterials(const ExportRequest& request,
     fit_values.push_back(request.fit.Eval(sample.wi, sample.wo));
   }
   MicrofacetSource refit_cache;
+  const double fit_log_rmse = request.samples.has_data ? FitLogRmse(request.fit, all) : -1.0;
   std::vector<ExportedMaterial> materials;
   for (Target target : targets) {
     const MicrofacetSource source =
@@ -261,6 +393,8 @@ std::vector<ExportedMaterial> ExportMaterials(const ExportRequest& request,
     material.source = source;
     if (!source.via.empty()) material.exact = false;
     material.error = MeasureExportError(material.eval, request.fit, all);
+    material.fit_log_rmse = fit_log_rmse;
+    material.warnings = ExportWarnings(material.error, fit_log_rmse);
     AnnotateText(request.fit, request.samples.origin, &material);
     materials.push_back(std::move(material));
   }
@@ -294,25 +428,29 @@ std::string ResolveFitSource(const std::string& fit_path) {
 nlohmann::json ExportJson(const ExportedMaterial& material, const std::string& fit_path,
                           const std::string& out_path, const std::string& samples_origin) {
   const MicrofacetSource& source = material.source;
-  nlohmann::json json = {{"fit", fit_path},
-                         {"target", TargetName(material.target)},
-                         {"out", out_path},
-                         {"material", material.material},
-                         {"exact", material.exact},
-                         {"parameters", material.parameters},
-                         {"notes", material.notes},
-                         {"error",
-                          {{"log_rmse", material.error.log_rmse},
-                           {"max_relative", material.error.max_relative},
-                           {"relative_floor", material.error.relative_floor},
-                           {"samples", material.error.samples},
-                           {"samples_origin", samples_origin}}},
-                         {"mapped_from",
-                          {{"model", source.model},
-                           {"rho_d", {source.rho_d[0], source.rho_d[1], source.rho_d[2]}},
-                           {"f0", {source.f0[0], source.f0[1], source.f0[2]}},
-                           {"alpha", source.alpha},
-                           {"via", source.via}}}};
+  nlohmann::json json = {
+      {"fit", fit_path},
+      {"target", TargetName(material.target)},
+      {"out", out_path},
+      {"material", material.material},
+      {"exact", material.exact},
+      {"parameters", material.parameters},
+      {"notes", material.notes},
+      {"error",
+       {{"log_rmse", material.error.log_rmse},
+        {"max_relative", material.error.max_relative},
+        {"relative_floor", material.error.relative_floor},
+        {"samples", material.error.samples},
+        {"samples_origin", samples_origin},
+        {"fit_log_rmse", material.fit_log_rmse >= 0 ? nlohmann::json(material.fit_log_rmse)
+                                                    : nlohmann::json(nullptr)}}},
+      {"warnings", material.warnings},
+      {"mapped_from",
+       {{"model", source.model},
+        {"rho_d", {source.rho_d[0], source.rho_d[1], source.rho_d[2]}},
+        {"f0", {source.f0[0], source.f0[1], source.f0[2]}},
+        {"alpha", source.alpha},
+        {"via", source.via}}}};
   return json;
 }
 
@@ -327,6 +465,10 @@ std::string ExportSummary(const ExportedMaterial& material, const std::string& o
   text += "error       log-rmse " + Num(material.error.log_rmse) + ", max relative error " +
           Num(material.error.max_relative) + " (values below " +
           Num(material.error.relative_floor) + " sr^-1 taken as that), on " + samples_origin + "\n";
+  if (material.fit_log_rmse >= 0) {
+    text += "fit         log-rmse " + Num(material.fit_log_rmse) + " against the data\n";
+  }
+  for (const std::string& warning : material.warnings) text += "WARNING     " + warning + "\n";
   return text;
 }
 

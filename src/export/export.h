@@ -41,12 +41,15 @@ std::vector<Target> AllTargets();
 // (fitters::PrepareSamples), or a hemisphere grid when the fit's data cannot be had.
 struct ExportSamples {
   std::vector<fitters::FitSample> samples;
-  std::string origin;  // "the fit's 1234 samples of FILE" or the grid's description
+  std::string origin;    // "the fit's 1234 samples of FILE" or the grid's description
+  bool has_data = true;  // the samples carry measured values (not so for the grid)
 };
 ExportSamples SamplesForExport(const Measurement& measurement);
 // Every (theta_i, theta_o, phi_o) at `step_deg` steps over the hemisphere (theta < 90°), equal
 // weights: for a fit whose data are not at hand.
 ExportSamples HemisphereGridSamples(double step_deg);
+// The grid step `brdf export` and brdfkit.export measure on when the fit's data are not at hand.
+inline constexpr double kFallbackGridStepDeg = 5.0;
 
 // Our fitted model in microfacet terms: what a renderer's material is mapped from.
 struct MicrofacetSource {
@@ -72,6 +75,22 @@ struct ExportError {
 };
 ExportError MeasureExportError(const std::function<Rgb(const Vec3&, const Vec3&)>& renderer,
                                const Model& fit, const std::vector<fitters::FitSample>& samples);
+// The fit's own log-rmse against the measured values of the samples, weighted as ExportError's.
+double FitLogRmse(const Model& fit, const std::vector<fitters::FitSample>& samples);
+
+// When an export loses the material. The renderer's model is measured against the fit; a warning
+// is due when it differs from the fit by more than the fit differs from the data, or somewhere by
+// an order of magnitude:
+//  - max relative error above kMaxRelativeWarning, or
+//  - log-rmse above kLogRmseWarningFactor times the fit's own log-rmse on the same samples and
+//    above kLogRmseWarningFloor (without data, the floor alone).
+inline constexpr double kMaxRelativeWarning = 10.0;
+inline constexpr double kLogRmseWarningFactor = 2.0;
+// Below this a log-rmse is a few percent of a bright value: no renderer shows it, however well a
+// noise-free fit follows its data.
+inline constexpr double kLogRmseWarningFloor = 0.02;
+// The warnings for an export's error; `fit_log_rmse` is negative when the fit's own is unknown.
+std::vector<std::string> ExportWarnings(const ExportError& error, double fit_log_rmse);
 
 struct ExportedMaterial {
   Target target = Target::kMitsuba3;
@@ -83,6 +102,8 @@ struct ExportedMaterial {
   MicrofacetSource source;         // what the material was mapped from
   std::function<Rgb(const Vec3&, const Vec3&)> eval;  // the renderer's model (our code)
   ExportError error;                                  // measured on the request's samples
+  double fit_log_rmse = -1;           // the fit's own against the samples' data; -1 without data
+  std::vector<std::string> warnings;  // ExportWarnings: the material is not what was fitted
 };
 
 // Maps the fit to the target, evaluates the result and measures its error. A phong or

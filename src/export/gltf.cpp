@@ -8,9 +8,15 @@
 //                 f90 = specular;  f = F specular_brdf + (1 − max(F)) baseColor / π
 //   material      f = mix(dielectric, metal, metallic)
 // Schlick's Fresnel is glTF's own, so F maps exactly; D maps exactly through roughness = sqrt(α).
+// The file puts the material on a preview sphere (AddPreviewSphere): importers that make objects
+// from a file (Blender) drop a material no mesh uses.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
+#include "core/angles.h"
 #include "export/targets.h"
 #include "models/microfacet.h"
 
@@ -74,6 +80,112 @@ struct GltfMaterial {
 
 Rgb Clamp01(const Rgb& rgb) { return rgb.max(0.0).min(1.0); }
 
+// The preview sphere's tessellation: rings from pole to pole and segments around, enough for a
+// highlight to read as round in an importer's viewport, small enough to keep the file a few tens
+// of kilobytes.
+constexpr int kSphereRings = 16, kSphereSegments = 32;
+// glTF's buffer-view targets (glTF 2.0 specification, 5.11 bufferView.target).
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+// glTF's component types (5.1.3 accessor.componentType).
+constexpr int kFloat = 5126, kUnsignedShort = 5123;
+
+// RFC 4648 base64, the encoding of glTF's data: URIs.
+std::string Base64(const std::vector<uint8_t>& bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  text.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t k = 0; k < bytes.size(); k += 3) {
+    const uint32_t chunk = (uint32_t{bytes[k]} << 16) |
+                           (k + 1 < bytes.size() ? uint32_t{bytes[k + 1]} << 8 : 0) |
+                           (k + 2 < bytes.size() ? uint32_t{bytes[k + 2]} : 0);
+    text += kAlphabet[(chunk >> 18) & 63];
+    text += kAlphabet[(chunk >> 12) & 63];
+    text += k + 1 < bytes.size() ? kAlphabet[(chunk >> 6) & 63] : '=';
+    text += k + 2 < bytes.size() ? kAlphabet[chunk & 63] : '=';
+  }
+  return text;
+}
+
+template <typename T>
+void AppendBytes(const std::vector<T>& values, std::vector<uint8_t>* bytes) {
+  const auto* begin = reinterpret_cast<const uint8_t*>(values.data());
+  bytes->insert(bytes->end(), begin, begin + values.size() * sizeof(T));
+}
+
+// A unit sphere wearing the material, as one mesh in one node of one scene: an importer that
+// makes objects, not bare materials (Blender's), then keeps the material. Positions double as
+// normals; triangles wind counter-clockwise seen from outside (glTF's front face); the poles'
+// degenerate triangles are left out.
+void AddPreviewSphere(nlohmann::json* document) {
+  std::vector<float> positions;
+  for (int ring = 0; ring <= kSphereRings; ++ring) {
+    const double theta = kPi * ring / kSphereRings;
+    for (int segment = 0; segment <= kSphereSegments; ++segment) {
+      const double phi = 2.0 * kPi * segment / kSphereSegments;
+      // glTF is +Y up.
+      positions.push_back(static_cast<float>(std::sin(theta) * std::cos(phi)));
+      positions.push_back(static_cast<float>(std::cos(theta)));
+      positions.push_back(static_cast<float>(-std::sin(theta) * std::sin(phi)));
+    }
+  }
+  std::vector<uint16_t> indices;
+  auto vertex = [](int ring, int segment) {
+    return static_cast<uint16_t>(ring * (kSphereSegments + 1) + segment);
+  };
+  for (int ring = 0; ring < kSphereRings; ++ring) {
+    for (int segment = 0; segment < kSphereSegments; ++segment) {
+      const uint16_t a = vertex(ring, segment), b = vertex(ring + 1, segment),
+                     c = vertex(ring + 1, segment + 1), d = vertex(ring, segment + 1);
+      if (ring > 0) indices.insert(indices.end(), {a, b, d});
+      if (ring + 1 < kSphereRings) indices.insert(indices.end(), {b, c, d});
+    }
+  }
+  std::vector<uint8_t> bytes;
+  AppendBytes(positions, &bytes);
+  const size_t vertex_bytes = bytes.size();
+  AppendBytes(indices, &bytes);
+  const size_t vertex_count = positions.size() / 3;
+  (*document)["buffers"] = {{{"byteLength", bytes.size()},
+                             {"uri", "data:application/octet-stream;base64," + Base64(bytes)}}};
+  (*document)["bufferViews"] = {
+      {{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vertex_bytes}, {"target", kArrayBuffer}},
+      {{"buffer", 0},
+       {"byteOffset", vertex_bytes},
+       {"byteLength", bytes.size() - vertex_bytes},
+       {"target", kElementArrayBuffer}}};
+  (*document)["accessors"] = {{{"bufferView", 0},
+                               {"componentType", kFloat},
+                               {"count", vertex_count},
+                               {"type", "VEC3"},
+                               {"min", {-1.0, -1.0, -1.0}},
+                               {"max", {1.0, 1.0, 1.0}}},
+                              {{"bufferView", 1},
+                               {"componentType", kUnsignedShort},
+                               {"count", indices.size()},
+                               {"type", "SCALAR"}}};
+  (*document)["meshes"] = {
+      {{"name", "brdfkit preview sphere"},
+       {"primitives",
+        {{{"attributes", {{"POSITION", 0}, {"NORMAL", 0}}}, {"indices", 1}, {"material", 0}}}}}};
+  (*document)["nodes"] = {{{"name", "brdfkit preview sphere"}, {"mesh", 0}}};
+  (*document)["scenes"] = {{{"nodes", {0}}}};
+  (*document)["scene"] = 0;
+}
+
+// The glTF file of a material whose parameters are set, on the preview sphere.
+ExportedMaterial GltfDocument(const GltfMaterial& chosen, ExportedMaterial material) {
+  nlohmann::json document;
+  document["asset"] = {{"version", "2.0"}, {"generator", "brdfkit export"}};
+  if (chosen.uses_specular_extension) {
+    document["extensionsUsed"] = {"KHR_materials_specular"};
+  }
+  document["materials"] = nlohmann::json::array({material.parameters});
+  AddPreviewSphere(&document);
+  material.text = document.dump(2) + "\n";
+  return material;
+}
+
 }  // namespace
 
 ExportedMaterial MapToGltf(const MappingInput& input) {
@@ -123,8 +235,25 @@ ExportedMaterial MapToGltf(const MappingInput& input) {
       return MappingLogRmse([&](const Vec3& wi, const Vec3& wo) { return candidate.Eval(wi, wo); },
                             input);
     };
+    // Diffuse alone (specularFactor 0): glTF's Fresnel rises to f90 = 1 at grazing in both of the
+    // others, which a lobe of small f0 (a refit of a broad lobe) does not; then this is closer.
+    GltfMaterial diffuse_only = dielectric;
+    diffuse_only.base_color = Clamp01(source.rho_d);
+    diffuse_only.specular = 0;
     const bool use_metal = source.rho_d.maxCoeff() <= 0 || error_of(metal) <= error_of(dielectric);
     chosen = use_metal ? metal : dielectric;
+    if (source.rho_d.maxCoeff() > 0 && error_of(diffuse_only) < error_of(chosen)) {
+      material.material =
+          "pbrMetallicRoughness, metallic 0, KHR_materials_specular specularFactor 0";
+      material.notes.push_back(
+          "the fit's lobe is left out (specularFactor 0, baseColor = rho_d): glTF's Fresnel rises "
+          "to 1 at grazing, and with it the lobe followed the fit less closely");
+      material.parameters = diffuse_only.Json();
+      material.eval = [diffuse_only](const Vec3& wi, const Vec3& wo) {
+        return diffuse_only.Eval(wi, wo);
+      };
+      return GltfDocument(diffuse_only, std::move(material));
+    }
     const TermDifferences terms = MeasureTermDifferences(input, chosen.Lobe(), [&](double cos_d) {
       return use_metal ? chosen.MetalFresnel(cos_d) : chosen.DielectricFresnel(cos_d);
     });
@@ -153,14 +282,7 @@ ExportedMaterial MapToGltf(const MappingInput& input) {
   }
   material.parameters = chosen.Json();
   material.eval = [chosen](const Vec3& wi, const Vec3& wo) { return chosen.Eval(wi, wo); };
-  nlohmann::json document;
-  document["asset"] = {{"version", "2.0"}, {"generator", "brdfkit export"}};
-  if (chosen.uses_specular_extension) {
-    document["extensionsUsed"] = {"KHR_materials_specular"};
-  }
-  document["materials"] = nlohmann::json::array({material.parameters});
-  material.text = document.dump(2) + "\n";
-  return material;
+  return GltfDocument(chosen, std::move(material));
 }
 
 }  // namespace brdf::exporters

@@ -34,6 +34,7 @@ void RegisterFit(py::module_& module);          // FitResult, fit
 void RegisterEnergy(py::module_& module);       // Energy, energy
 void RegisterImages(py::module_& module);       // render, tonemap
 void RegisterView(py::module_& module);         // view
+void RegisterExport(py::module_& module);       // export
 
 // Limits TBB's worker threads for the lifetime of the object when `threads` > 0, as the CLI's
 // --threads does (0: all cores); throws UsageError when negative.

@@ -37,7 +37,8 @@ void RegisterEnergy(py::module_& module) {
   py::class_<PythonEnergy>(module, "Energy", R"doc(
 Directional albedo against incidence angle and the conservation check, as `brdf energy`.
 theta_deg (M,), albedo (M, 3), error (M, 3), coverage (M,); max (3,), theta_deg_at_max (3,),
-conserving, verdict, notes, warnings; report: the same dict as `brdf energy --json`.)doc")
+verdict ("conserving", "not conserving" or "undecided"), reason (the sentence it rests on),
+notes, warnings; report: the same dict as `brdf energy --json`.)doc")
       .def_property_readonly("theta_deg",
                              [](const PythonEnergy& energy) {
                                std::vector<double> theta;
@@ -71,10 +72,10 @@ conserving, verdict, notes, warnings; report: the same dict as `brdf energy --js
                                const auto& at = energy.curve.theta_deg_at_max;
                                return Rgb3(Rgb(at[0], at[1], at[2]));
                              })
-      .def_property_readonly("conserving",
-                             [](const PythonEnergy& energy) { return energy.curve.conserving(); })
-      .def_property_readonly("verdict",
-                             [](const PythonEnergy& energy) { return energy.curve.Verdict(); })
+      .def_property_readonly(
+          "verdict", [](const PythonEnergy& energy) { return energy.curve.verdict().name(); })
+      .def_property_readonly(
+          "reason", [](const PythonEnergy& energy) { return energy.curve.verdict().reason; })
       .def_property_readonly("notes", [](const PythonEnergy& energy) { return energy.curve.notes; })
       .def_property_readonly("warnings",
                              [](const PythonEnergy& energy) { return energy.curve.warnings; })
@@ -147,8 +148,8 @@ samples:     Monte Carlo samples per angle (default 65536).
 seed:        Monte Carlo seed (default 1).
 threads:     worker threads, 0 = all cores; the result does not depend on it.
 
-Returns an Energy. A material that does not conserve energy is a finding (conserving is False),
-not an error. The GIL is released during the integration.)doc");
+Returns an Energy. A material that does not conserve energy is a finding (verdict
+"not conserving"), not an error. The GIL is released during the integration.)doc");
 }
 
 }  // namespace brdf::python

@@ -89,4 +89,8 @@ void RegisterErrors(py::module_& module) {
 
 py::handle ConvergenceWarning() { return classes.convergence; }
 
+void Warn(const std::string& message) {
+  if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+}
+
 }  // namespace brdf::python

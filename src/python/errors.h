@@ -10,11 +10,16 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 namespace brdf::python {
 
 void RegisterErrors(pybind11::module_& module);
 
 // The warning category of a fit that did not converge.
 pybind11::handle ConvergenceWarning();
+
+// Issues a UserWarning (Python's warnings module): a finding the caller should see, not an error.
+void Warn(const std::string& message);
 
 }  // namespace brdf::python

@@ -14,6 +14,7 @@
 #include "models/model_source.h"
 #include "python/bindings.h"
 #include "python/convert.h"
+#include "python/errors.h"
 #include "render/material.h"
 #include "render/scene_lighting.h"
 #include "render/sphere.h"
@@ -33,10 +34,6 @@ py::array_t<T> Adopt(std::vector<T>&& values, std::vector<py::ssize_t> shape) {
 py::array_t<float> ImageArray(Image&& image) {
   const py::ssize_t height = image.height, width = image.width;
   return Adopt(std::move(image.rgba), {height, width, py::ssize_t{Image::kChannels}});
-}
-
-void Warn(const std::string& message) {
-  if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
 }
 
 // An (H, W, 4) or (H, W, 3) float array (alpha 1 when absent) as the library's Image.

@@ -36,7 +36,7 @@ its option names and defaults as keywords; the same inputs and seeds give the sa
     import brdfkit
     m = brdfkit.read("data/cornell-astm/cayman.astm")     # Measurement: wi, wo, rgb, sigma
     fit = brdfkit.fit(m, model="auto", loss="log")        # FitResult: model, params, report
-    curve = brdfkit.energy(fit)                           # Energy: theta_deg, albedo, conserving
+    curve = brdfkit.energy(fit)                           # Energy: theta_deg, albedo, verdict, reason
     img = brdfkit.render(fit, size=256, spp=16)           # float32 (256, 256, 4), W/(m^2 sr)
     png = brdfkit.tonemap(img, operator="reinhard")       # uint8 (256, 256, 3)
 
@@ -51,4 +51,5 @@ ComputationError; all are brdfkit.Error. Long calls release the GIL; threads=0 u
   brdf::python::RegisterEnergy(module);
   brdf::python::RegisterImages(module);
   brdf::python::RegisterView(module);
+  brdf::python::RegisterExport(module);
 }

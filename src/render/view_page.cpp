@@ -110,6 +110,7 @@ nlohmann::json SourceJson(const std::string& source, const ViewGrid& grid) {
   AlbedoOptions albedo_options;
   albedo_options.theta_steps = grid.albedo_steps;
   const AlbedoCurve curve = SourceAlbedoCurve(source, albedo_options);
+  const EnergyVerdict verdict = curve.verdict();
   std::vector<double> albedo_theta;
   std::vector<float> albedo;
   for (const AlbedoPoint& point : curve.points) {
@@ -118,8 +119,8 @@ nlohmann::json SourceJson(const std::string& source, const ViewGrid& grid) {
   }
   json["albedo"] = {{"theta_deg", albedo_theta},
                     {"rgb", Base64Floats(albedo)},
-                    {"conserving", curve.conserving()},
-                    {"verdict", curve.Verdict()}};
+                    {"conserving", verdict.conservation == Conservation::kConserving},
+                    {"verdict", verdict.Text()}};
   return json;
 }
 

@@ -17,7 +17,8 @@ async function main() {
   for (const file of files) {
     const report = await validator.validateBytes(new Uint8Array(fs.readFileSync(file)), {
       uri: path.basename(file),
-      // An exported material references no buffers or images; any request is an error.
+      // An export embeds its one buffer (the preview sphere) as a data: URI and references no
+      // external buffers or images; any request is an error.
       externalResourceFunction: (uri) => Promise.reject(new Error('unexpected resource ' + uri)),
     });
     const issues = report.issues;

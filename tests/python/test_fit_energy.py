@@ -119,7 +119,8 @@ def test_energy_of_a_model_equals_brdf_energy(brdf):
     np.testing.assert_array_equal(energy.theta_deg, [p["theta_deg"] for p in cli["albedo"]])
     np.testing.assert_array_equal(energy.albedo, [p["rgb"] for p in cli["albedo"]])
     np.testing.assert_array_equal(energy.max, cli["max_albedo"])
-    assert energy.conserving == cli["conserving"] is True
+    assert energy.verdict == cli["verdict"] == "conserving"
+    assert energy.reason == cli["reason"]
 
 
 def test_lambert_albedo_is_rho():
