@@ -124,6 +124,8 @@ double LobeExponentTerm(LobeFrame frame, double exponent, const Vec3& wi, const 
   double cos_offset;
   if (frame == LobeFrame::kMirror) {
     cos_offset = MirrorDirection(wi).dot(wo);
+  } else if (frame == LobeFrame::kRetro) {
+    cos_offset = wi.dot(wo);
   } else {
     cos_offset = (wi + wo).normalized().z();
   }
@@ -132,6 +134,7 @@ double LobeExponentTerm(LobeFrame frame, double exponent, const Vec3& wi, const 
 }
 
 const char* OffsetName(LobeFrame frame) {
+  if (frame == LobeFrame::kRetro) return "angle from the incident direction";
   return frame == LobeFrame::kMirror ? "angle from the mirror direction" : "half-vector angle";
 }
 

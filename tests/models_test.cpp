@@ -565,7 +565,10 @@ TEST(Registry, ListsTheModelsOfDesignInOrder) {
   std::vector<std::string> names;
   for (const ModelInfo& info : ModelRegistry()) names.push_back(info.name);
   EXPECT_EQ(names, (std::vector<std::string>{"lambert", "phong", "blinn-phong", "blinn-phong-exact",
-                                             "ggx", "beckmann"}));
+                                             "ggx", "beckmann", "lambert+retro", "eon", "eon+ggx",
+                                             "lambert+ggx+ggx", "lambert+retro+ggx"}));
+  // The ladder `--model auto` climbs is the first six.
+  for (size_t k = 0; k < names.size(); ++k) EXPECT_EQ(ModelRegistry()[k].auto_candidate, k < 6);
 }
 
 TEST(Registry, ParameterSlotsCoverTheArrayExactlyOnce) {

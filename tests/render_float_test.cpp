@@ -89,6 +89,7 @@ TEST(RenderFloat, PolynomialsMatchLibmToAFewFloatUlps) {
 std::vector<std::pair<std::string, LobeCoordinates>> Lobes() {
   return {{"normal e=5", {LobeFrame::kNormal, 5.0}},
           {"mirror e=50", {LobeFrame::kMirror, 50.0}},
+          {"retro e=40", ParseModel("lambert+retro:n_r=40").Lobe()},
           {"half e=300", {LobeFrame::kHalfVector, 300.0}},
           {"half e=20000", {LobeFrame::kHalfVector, 20000.0}},
           {"ggx", ParseModel("ggx:alpha=0.1").Lobe()},
@@ -120,6 +121,7 @@ TEST(RenderFloat, LobeSamplerDrawsItsOwnPdfWhichIsStrategyPdf) {
       const Vec3 w = sampler.Sample(unit(random), unit(random)).cast<double>().normalized();
       double cos_beta = w.z();
       if (lobe.frame == LobeFrame::kMirror) cos_beta = w.dot(MirrorDirection(wo_double));
+      if (lobe.frame == LobeFrame::kRetro) cos_beta = w.dot(wo_double);
       if (lobe.frame == LobeFrame::kHalfVector) cos_beta = (w + wo_double).normalized().z();
       const double mass = LobeMassBeyond(lobe, cos_beta);
       ++counts[std::clamp(static_cast<int>((1.0 - mass) * bins), 0, bins - 1)];

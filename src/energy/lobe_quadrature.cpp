@@ -88,8 +88,10 @@ class LobeRings {
     phi_o_ = phi_o;
     // Axis at polar angle theta_a, azimuth phi_a; tangent_up_ is the unit vector in the plane
     // of the axis and the normal, perpendicular to the axis, with a non-negative z.
-    const double theta_a = frame == LobeFrame::kMirror ? theta_o : 0.0;
-    const double phi_a = frame == LobeFrame::kMirror ? phi_o + kPi : 0.0;
+    // The axis: the normal, the mirror direction of wo, or wo itself (a retro lobe).
+    const bool tilted = frame == LobeFrame::kMirror || frame == LobeFrame::kRetro;
+    const double theta_a = tilted ? theta_o : 0.0;
+    const double phi_a = frame == LobeFrame::kMirror ? phi_o + kPi : (tilted ? phi_o : 0.0);
     axis_ = SphericalDirection(theta_a, phi_a);
     tangent_up_ = Vec3(-std::cos(theta_a) * std::cos(phi_a), -std::cos(theta_a) * std::sin(phi_a),
                        std::sin(theta_a));

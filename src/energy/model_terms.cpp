@@ -16,10 +16,13 @@ std::vector<AlbedoTerm> AlbedoTerms(const Model& model) {
   const std::vector<double>& params = model.params();
   const ModelInfo& info = model.info();
   const LobeCoordinates diffuse_coordinates{LobeFrame::kNormal, 1.0};
-  // Every model's diffuse term is rho_d/π (slot 0, DESIGN §2).
+  // Every model's diffuse term comes first and takes rho_d at slot 0 (DESIGN §2); alone, it is
+  // the model named by the term (lambert, eon) with the composition's first parameters.
   const double diffuse_scale = MaxChannel(params, 0);
   if (!info.has_lobe()) return {{"diffuse", model, diffuse_coordinates, diffuse_scale}};
-  const Model diffuse(FindModel(models::Lambert::kName), {params[0], params[1], params[2]});
+  const Model diffuse(
+      FindModel(info.terms.substr(0, info.terms.find('+'))),
+      std::vector<double>(params.begin(), params.begin() + info.lobes.front().first_slot));
   std::vector<AlbedoTerm> terms = {{"diffuse", diffuse, diffuse_coordinates, diffuse_scale}};
   for (size_t k = 0; k < info.lobes.size(); ++k) {
     const LobeInfo& lobe = info.lobes[k];

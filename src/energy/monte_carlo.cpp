@@ -36,7 +36,8 @@ Vec3 SampleStrategy(const LobeCoordinates& coordinates, const Vec3& wo, const Po
       return coordinates.exponent == 1.0 ? SampleCosineHemisphere(u)
                                          : SamplePowerCosineLobe(u, coordinates.exponent);
     case LobeFrame::kMirror:
-      return Frame::FromZ(MirrorDirection(wo))
+    case LobeFrame::kRetro:
+      return Frame::FromZ(LobeAxis(coordinates.frame, wo))
           .FromLocal(SamplePowerCosineLobe(u, coordinates.exponent));
     case LobeFrame::kHalfVector:
       if (VisibleNormals(coordinates, wo)) {
@@ -54,7 +55,8 @@ double StrategyPdf(const LobeCoordinates& coordinates, const Vec3& wo, const Vec
       return coordinates.exponent == 1.0 ? CosineHemispherePdf(CosTheta(wi))
                                          : PowerCosineLobePdf(CosTheta(wi), coordinates.exponent);
     case LobeFrame::kMirror:
-      return PowerCosineLobePdf(wi.dot(MirrorDirection(wo)), coordinates.exponent);
+    case LobeFrame::kRetro:
+      return PowerCosineLobePdf(wi.dot(LobeAxis(coordinates.frame, wo)), coordinates.exponent);
     case LobeFrame::kHalfVector: {
       const Vec3 sum = wi + wo;
       if (sum.squaredNorm() <= 0.0) return 0.0;

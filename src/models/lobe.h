@@ -18,7 +18,17 @@ enum class LobeFrame {
   kNormal,      // about the surface normal in wi (a diffuse term, or no known lobe)
   kMirror,      // about the mirror direction of wo in wi (phong: cos(alpha) = wi.mirror(wo))
   kHalfVector,  // about the normal in the half vector h, wi = Reflect(wo, h) (Blinn, microfacets)
+  kRetro,       // about wo itself in wi (a back-scattering lobe, retro: cos(beta) = wi.wo)
 };
+
+// The axis in wi of a lobe about an axis in wi (every frame but kHalfVector): the normal, the
+// mirror direction of wo, or wo itself.
+template <typename T>
+Vec3T<T> LobeAxis(LobeFrame frame, const Vec3T<T>& wo) {
+  if (frame == LobeFrame::kMirror) return Vec3T<T>(-wo.x(), -wo.y(), wo.z());
+  if (frame == LobeFrame::kRetro) return wo;
+  return Vec3T<T>(T(0), T(0), T(1));
+}
 
 // A rotationally symmetric density p(beta) in solid angle about the lobe's axis, given by three
 // functions of the polar angle beta and the lobe's shape parameter:

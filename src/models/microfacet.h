@@ -210,34 +210,66 @@ struct MicrofacetLobe {
   }
 
   // The fitter's variables s[1 or 3] and shape[1] (parameterization.h): alpha = exp(shape),
-  // f0_c = logistic(s_c), and the lobe takes max_theta E(theta; alpha, f0_c) (`bound`:
-  // bound.MaxAlbedo(ln alpha, f0)) of the budget.
+  // f0_c = cap_c logistic(s_c), and the lobe takes M(f0_c) = max_theta E(theta; alpha, f0_c)
+  // (`bound`: bound.MaxAlbedo(ln alpha, f0)) of the budget.
+  //
+  // The first lobe has the whole budget (1) and cap 1: its M(1) is the albedo of a lobe with
+  // F = 1, at most 1. A lobe after another one (a clear coat over a base lobe, a lobe after a
+  // retro lobe) has what the first left, and its f0 is capped so that it takes no more: M is the
+  // largest of E's values at the table's nodes, each linear in f0 (Schlick), so M is convex in f0
+  // and M(cap) <= (1 - cap) M(0) + cap M(1), which is the budget for
+  //   cap = (budget - M(0)) / (M(1) - M(0))   clamped to [0, 1].
+  // The cap cannot go below f0 = 0: a lobe whose M(0) alone (Schlick's grazing rise) exceeds the
+  // budget still takes M(0), and the fit's energy check (fitters/energy_check.h) says so.
   static int NumVariables(bool grey) { return (grey ? 1 : 3) + 1; }
   static void VariableBounds(bool grey, double* lower, double* upper) {
     LobeVariableBounds(grey, kFitShapeMin, kFitShapeMax, lower, upper);
   }
   template <typename T, typename Bound>
-  static void Map(const T* variables, bool grey, const T*, T* params, T* taken,
+  static T F0Cap(const T& log_alpha, const T& budget, const Bound& bound) {
+    if (!(budget < T(1))) return T(1);
+    const T at_zero = bound.MaxAlbedo(log_alpha, T(0));
+    const T at_one = bound.MaxAlbedo(log_alpha, T(1));
+    if (!(budget > at_zero)) return T(0);
+    if (!(at_one > budget)) return T(1);
+    return (budget - at_zero) / (at_one - at_zero);
+  }
+  // The caps of the three channels; a grey lobe (one f0) takes the least of them.
+  template <typename T, typename Bound>
+  static void F0Caps(const T& log_alpha, const T* budget, bool grey, const Bound& bound, T* caps) {
+    for (int c = 0; c < 3; ++c) caps[c] = F0Cap(log_alpha, budget[c], bound);
+    if (!grey) return;
+    T least = caps[0];
+    for (int c = 1; c < 3; ++c) {
+      if (caps[c] < least) least = caps[c];
+    }
+    for (int c = 0; c < 3; ++c) caps[c] = least;
+  }
+  template <typename T, typename Bound>
+  static void Map(const T* variables, bool grey, const T* budget, T* params, T* taken,
                   const Bound& bound) {
     using std::exp;
     const int s = grey ? 1 : 3;
     const T& log_alpha = variables[s];
+    T caps[3];
+    F0Caps(log_alpha, budget, grey, bound, caps);
     for (int c = 0; c < 3; ++c) {
-      const T f0 = Logistic(variables[grey ? 0 : c]);
+      const T f0 = caps[c] * Logistic(variables[grey ? 0 : c]);
       params[kF0 + c] = f0;
       taken[c] = bound.MaxAlbedo(log_alpha, f0);
     }
     params[kAlpha] = exp(log_alpha);
   }
   template <typename Bound>
-  static void Unmap(const double* params, bool grey, const double*, double* variables,
+  static void Unmap(const double* params, bool grey, const double* budget, double* variables,
                     double* taken, const Bound& bound) {
     const double log_alpha =
         std::clamp(std::log(params[kAlpha]), std::log(kFitShapeMin), std::log(kFitShapeMax));
-    double s[3];
+    double s[3], caps[3];
+    F0Caps(log_alpha, budget, grey, bound, caps);
     for (int c = 0; c < 3; ++c) {
-      s[c] = BoundedLogit(params[kF0 + c]);
-      taken[c] = bound.MaxAlbedo(log_alpha, Logistic(s[c]));
+      s[c] = BoundedLogit(caps[c] > 0 ? params[kF0 + c] / caps[c] : 0.0);
+      taken[c] = bound.MaxAlbedo(log_alpha, caps[c] * Logistic(s[c]));
     }
     PackShares(s, log_alpha, grey, variables);
   }

@@ -12,9 +12,11 @@
 #include "models/blinn_phong.h"
 #include "models/blinn_phong_exact.h"
 #include "models/composition.h"
+#include "models/eon.h"
 #include "models/ggx.h"
 #include "models/lambert.h"
 #include "models/phong.h"
+#include "models/retro.h"
 
 namespace brdf::models {
 
@@ -22,8 +24,8 @@ template <typename... Types>
 struct TypeList {};
 
 // Every term, diffuse terms first.
-using AllTerms =
-    TypeList<Lambert, PhongLobe, BlinnPhongLobe, BlinnPhongExactLobe, GgxLobe, BeckmannLobe>;
+using AllTerms = TypeList<Lambert, Eon, PhongLobe, BlinnPhongLobe, BlinnPhongExactLobe, GgxLobe,
+                          BeckmannLobe, RetroLobe>;
 
 // The named models. kName is what a model string and a report call it (the shorthand of DESIGN
 // §2: `ggx` = lambert+ggx), kAuto whether `--model auto` climbs it, in this order (the ladder,
@@ -53,7 +55,34 @@ struct Beckmann : Composition<Lambert, BeckmannLobe>, SingleLobeSlots {
   static constexpr bool kAuto = true;
 };
 
-using AllModels = TypeList<LambertModel, Phong, BlinnPhong, BlinnPhongExact, Ggx, Beckmann>;
+// Compositions beyond the ladder: named by their terms, fitted only on request.
+struct LambertRetro : Composition<Lambert, RetroLobe> {
+  static constexpr const char* kName = "lambert+retro";
+  static constexpr bool kAuto = false;
+};
+
+struct EonModel : Composition<Eon> {
+  static constexpr const char* kName = "eon";
+  static constexpr bool kAuto = false;
+};
+struct EonGgx : Composition<Eon, GgxLobe> {
+  static constexpr const char* kName = "eon+ggx";
+  static constexpr bool kAuto = false;
+};
+
+// Two lobes: a base lobe under a clear coat (the coat's f0 grey), and a retro-reflector's
+// back-scatter with the specular reflection of its cover.
+struct LambertGgxGgx : Composition<Lambert, GgxLobe, GgxLobe> {
+  static constexpr const char* kName = "lambert+ggx+ggx";
+  static constexpr bool kAuto = false;
+};
+struct LambertRetroGgx : Composition<Lambert, RetroLobe, GgxLobe> {
+  static constexpr const char* kName = "lambert+retro+ggx";
+  static constexpr bool kAuto = false;
+};
+
+using AllModels = TypeList<LambertModel, Phong, BlinnPhong, BlinnPhongExact, Ggx, Beckmann,
+                           LambertRetro, EonModel, EonGgx, LambertGgxGgx, LambertRetroGgx>;
 
 // Calls f(M{}) for every type of the list, in order.
 template <typename F, typename... Types>

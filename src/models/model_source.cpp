@@ -110,6 +110,11 @@ bool IsModelSpec(const std::string& spec) {
   struct stat info;
   if (::stat(spec.c_str(), &info) == 0) return false;
   const std::string name = spec.substr(0, spec.find(':'));
+  // A composition names its terms: FindModel says which one is wrong.
+  if (name.find('+') != std::string::npos) {
+    FindModel(name);
+    return true;
+  }
   std::string names;
   for (const ModelInfo& model : ModelRegistry()) {
     if (model.name == name) return true;

@@ -1,6 +1,8 @@
 #include "models/registry.h"
 
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "core/errors.h"
 
@@ -14,6 +16,52 @@ std::vector<ModelInfo> BuildRegistry() {
     registry.push_back(MakeModelInfo<M>(M::kName, M::kAuto));
   });
   return registry;
+}
+
+// Why `name`, written as a composition (terms joined by '+'), is not a model: the first term that
+// is not one, a lobe before the diffuse term, a second diffuse term, more than two lobes, or a
+// valid composition that has no entry in models/model_list.h.
+std::string CompositionError(std::string_view name, const std::string& known) {
+  std::vector<std::string> terms;
+  for (size_t start = 0;;) {
+    const size_t end = name.find('+', start);
+    terms.emplace_back(name.substr(start, end == std::string_view::npos ? end : end - start));
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  std::string diffuse_names, lobe_names;
+  std::vector<bool> diffuse(terms.size(), false);
+  std::vector<bool> found(terms.size(), false);
+  models::ForEachTerm([&](auto term) {
+    using Term = decltype(term);
+    std::string& names = Term::kDiffuse ? diffuse_names : lobe_names;
+    names += (names.empty() ? "" : ", ") + std::string(Term::kName);
+    for (size_t k = 0; k < terms.size(); ++k) {
+      if (terms[k] == Term::kName) {
+        found[k] = true;
+        diffuse[k] = Term::kDiffuse;
+      }
+    }
+  });
+  const std::string model = "model '" + std::string(name) + "': ";
+  for (size_t k = 0; k < terms.size(); ++k) {
+    if (!found[k]) {
+      return model + "unknown term '" + terms[k] + "' (diffuse terms: " + diffuse_names +
+             "; lobes: " + lobe_names + ")";
+    }
+  }
+  if (!diffuse[0]) {
+    return model + "a composition starts with a diffuse term (" + diffuse_names + "), not '" +
+           terms[0] + "'";
+  }
+  for (size_t k = 1; k < terms.size(); ++k) {
+    if (diffuse[k]) return model + "'" + terms[k] + "' is a diffuse term; only the first term is";
+  }
+  if (terms.size() > 3) {
+    return model + "at most two lobes after the diffuse term, found " +
+           std::to_string(terms.size() - 1);
+  }
+  return model + "this composition has no entry in the model list (known: " + known + ")";
 }
 
 }  // namespace
@@ -66,6 +114,7 @@ const ModelInfo& FindModel(std::string_view name) {
     if (info.name == name || info.terms == name) return info;
     known += (known.empty() ? "" : ", ") + info.name;
   }
+  if (name.find('+') != std::string_view::npos) throw UsageError(CompositionError(name, known));
   throw UsageError("unknown model '" + std::string(name) + "' (known: " + known + ")");
 }
 

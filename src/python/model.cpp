@@ -83,11 +83,13 @@ UsageError for a bad string, InputError for a bad report.)doc");
         py::list list;
         for (const ModelInfo& info : ModelRegistry()) {
           list.append(py::dict(py::arg("name") = info.name, py::arg("formula") = info.formula,
-                               py::arg("params") = ParamTable(info)));
+                               py::arg("params") = ParamTable(info),
+                               py::arg("auto") = info.auto_candidate));
         }
         return list;
       },
-      "Every model of the registry, in the order of DESIGN §2: a list of {name, formula, params}.");
+      "Every model of the registry, in the order of DESIGN §2: a list of {name, formula, params, "
+      "auto} (auto: a rung `--model auto` climbs).");
 }
 
 void RegisterFit(py::module_& module) {

@@ -54,11 +54,11 @@ LobeSampler::LobeSampler(const LobeTechnique& technique, const Vec3f& wo)
   exponent_ = static_cast<float>(lobe.exponent);
   normalization_ = static_cast<float>((lobe.exponent + 1.0) * 0.5 * kInvPi);
   inverse_exponent_plus_one_ = static_cast<float>(1.0 / (lobe.exponent + 1.0));
-  if (lobe.frame == LobeFrame::kMirror) {
-    const Frame frame = Frame::FromZ(MirrorDirection(wo_double_).normalized());
-    mirror_frame_.row(0) = frame.x.cast<float>();
-    mirror_frame_.row(1) = frame.y.cast<float>();
-    mirror_frame_.row(2) = frame.z.cast<float>();
+  if (lobe.frame == LobeFrame::kMirror || lobe.frame == LobeFrame::kRetro) {
+    const Frame frame = Frame::FromZ(LobeAxis(lobe.frame, wo_double_).normalized());
+    axis_frame_.row(0) = frame.x.cast<float>();
+    axis_frame_.row(1) = frame.y.cast<float>();
+    axis_frame_.row(2) = frame.z.cast<float>();
   }
 }
 
@@ -76,11 +76,11 @@ BRDF_LANE_FUNCTION void LobeSampler::PowerCosineSample(float u0, float u1, float
               axis_z = 1.0f - one_minus_cos;
   if constexpr (kFrame == LobeFrame::kNormal) {
     *x = axis_x, *y = axis_y, *z = axis_z;
-  } else if constexpr (kFrame == LobeFrame::kMirror) {
-    // mirror_frame_ transposed: its rows are the frame's axes.
-    *x = mirror_frame_(0, 0) * axis_x + mirror_frame_(1, 0) * axis_y + mirror_frame_(2, 0) * axis_z;
-    *y = mirror_frame_(0, 1) * axis_x + mirror_frame_(1, 1) * axis_y + mirror_frame_(2, 1) * axis_z;
-    *z = mirror_frame_(0, 2) * axis_x + mirror_frame_(1, 2) * axis_y + mirror_frame_(2, 2) * axis_z;
+  } else if constexpr (kFrame == LobeFrame::kMirror || kFrame == LobeFrame::kRetro) {
+    // axis_frame_ transposed: its rows are the frame's axes.
+    *x = axis_frame_(0, 0) * axis_x + axis_frame_(1, 0) * axis_y + axis_frame_(2, 0) * axis_z;
+    *y = axis_frame_(0, 1) * axis_x + axis_frame_(1, 1) * axis_y + axis_frame_(2, 1) * axis_z;
+    *z = axis_frame_(0, 2) * axis_x + axis_frame_(1, 2) * axis_y + axis_frame_(2, 2) * axis_z;
   } else {
     // The drawn axis is the half vector: reflect wo about it.
     const float twice_dot = 2.0f * (wo_.x() * axis_x + wo_.y() * axis_y + wo_.z() * axis_z);
@@ -99,6 +99,11 @@ BRDF_LANE_FUNCTION float LobeSampler::PowerCosineAxis(float x, float y, float z,
     // |wi - m|^2 = 2 (1 - cos) for unit vectors; beyond 90 deg from m (1 - cos >= 1) the
     // density is 0.
     const float dx = x + wo_.x(), dy = y + wo_.y(), dz = z - wo_.z();
+    *one_minus_cos = 0.5f * (dx * dx + dy * dy + dz * dz);
+    return 1.0f;
+  } else if constexpr (kFrame == LobeFrame::kRetro) {
+    // The same about wo itself.
+    const float dx = x - wo_.x(), dy = y - wo_.y(), dz = z - wo_.z();
     *one_minus_cos = 0.5f * (dx * dx + dy * dy + dz * dz);
     return 1.0f;
   } else {
@@ -207,6 +212,8 @@ void LobeSampler::SampleBatch(const float* u0, const float* u1, int count, float
       return PowerCosineSamples<LobeFrame::kMirror>(u0, u1, count, x, y, z);
     case LobeFrame::kHalfVector:
       return PowerCosineSamples<LobeFrame::kHalfVector>(u0, u1, count, x, y, z);
+    case LobeFrame::kRetro:
+      return PowerCosineSamples<LobeFrame::kRetro>(u0, u1, count, x, y, z);
   }
 }
 
@@ -221,6 +228,9 @@ float LobeSampler::AxisOneMinusCos(const Vec3f& wi) const {
       break;
     case LobeFrame::kHalfVector:
       PowerCosineAxis<LobeFrame::kHalfVector>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
+      break;
+    case LobeFrame::kRetro:
+      PowerCosineAxis<LobeFrame::kRetro>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
       break;
   }
   return one_minus_cos;
@@ -256,6 +266,8 @@ BRDF_LANE_FUNCTION void LobeSampler::MisPdfsIn(const float* x, const float* y, c
       return AxisMisPdfs<LobeFrame::kMirror>(x, y, z, count, mis_pdf);
     case LobeFrame::kHalfVector:
       return AxisMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);
+    case LobeFrame::kRetro:
+      return AxisMisPdfs<LobeFrame::kRetro>(x, y, z, count, mis_pdf);
   }
 }
 

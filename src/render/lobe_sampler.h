@@ -127,7 +127,7 @@ class LobeSampler {
   Vec3f wo_;
   Vec3 wo_double_;
   float exponent_ = 1.0f, normalization_ = 1.0f, inverse_exponent_plus_one_ = 0.5f;
-  Eigen::Matrix3f mirror_frame_;  // rows: the tangent frame about the mirror direction of wo
+  Eigen::Matrix3f axis_frame_;  // rows: the tangent frame about the axis (mirror direction or wo)
   bool avx2_ = HdrAvx2Enabled();
 };
 
