@@ -197,7 +197,8 @@ void FitDataset(const Measurement& measurement, const DemoOptions& options,
   }
   // The chosen fit's albedo curve, as a chart.
   const fitters::FitResult& chosen = dataset->fits[dataset->chosen];
-  const AlbedoCurve curve = ModelAlbedoCurve(chosen.model, AlbedoOptions{});
+  AlbedoCurve curve = ModelAlbedoCurve(chosen.model, AlbedoOptions{});
+  curve.source = chosen.model.ToString(7);  // the chart's title, for a person: 7 digits
   const std::string plot = "images/" + dataset->name + "-albedo.png";
   WriteAlbedoPlot(curve, out_dir + "/" + plot);
   dataset->images.push_back({"directional albedo of the " + chosen.model.name() + " fit", plot});
