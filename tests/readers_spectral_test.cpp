@@ -182,12 +182,22 @@ TEST(Pbrt, CaymanFirstRecordAndMetadata) {
   EXPECT_EQ(m.metadata.at("units"), "sr^-1");
 }
 
-// acryl_blue.brdf opens directly with "# num wls": no description, so the file names it.
+// acryl_blue.brdf opens directly with "# num wls": no description, so the file names it (without
+// its extension).
 TEST(Pbrt, FileWithoutHeaderCommentsIsNamedByItsFile) {
   const Measurement m = ReadPbrtBrdf(DataPath("cornell-pbrt-v2/acryl_blue.brdf"), {});
   EXPECT_EQ(m.samples.size(), 1439u);
-  EXPECT_EQ(m.metadata.at("sample"), "acryl_blue.brdf");
+  EXPECT_EQ(m.metadata.at("sample"), "acryl_blue");
   EXPECT_EQ(m.metadata.count("comments"), 0u);
+}
+
+// krylon_blue.brdf, line 2: "# Krylon spray enamel 7205, "True Blue"; overcoat Plasti-kote 33
+// Glass Frosting Spray": the name is the first clause; the whole line stays in the comments.
+TEST(Pbrt, ADescriptiveCommentIsNamedByItsFirstClause) {
+  const Measurement m = ReadPbrtBrdf(DataPath("cornell-pbrt-v2/krylon_blue.brdf"), {});
+  EXPECT_EQ(m.SampleName(), "Krylon spray enamel 7205, \"True Blue\"");
+  EXPECT_NE(m.metadata.at("comments").find("overcoat Plasti-kote 33 Glass Frosting Spray"),
+            std::string::npos);
 }
 
 // mystique.brdf exists only in this layout: "# Ford Mystic lacquer (BASF, 2-2-95)" on line 2.

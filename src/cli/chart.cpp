@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
+#include "core/text.h"
 #include "hdr/image_files.h"
 
 namespace brdf::cli::chart {
@@ -29,8 +30,7 @@ void Label(cv::Mat* image, const std::string& text, cv::Point origin, double sca
 }
 
 std::string Shorten(const std::string& text, size_t max_chars) {
-  if (text.size() <= max_chars || max_chars < 4) return text;
-  return text.substr(0, max_chars - 3) + "...";
+  return ShortLabel(text, max_chars);
 }
 
 void WritePng(const cv::Mat& image, const std::string& path) {

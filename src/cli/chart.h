@@ -25,7 +25,7 @@ double TickStep(double range, int ticks);
 std::string TickLabel(double value);
 // Text in black, anti-aliased, baseline at `origin`.
 void Label(cv::Mat* image, const std::string& text, cv::Point origin, double scale = 0.5);
-// Cuts `text` to `max_chars` with an ellipsis (titles built from file names can be long).
+// Cuts `text` to `max_chars` for a chart (core/text.h ShortLabel: a path keeps its file name).
 std::string Shorten(const std::string& text, size_t max_chars);
 // Writes the (BGR, 8-bit) image as a PNG atomically. Throws OutputError naming the path when
 // the encoding or the write fails.

@@ -54,26 +54,67 @@ class Steps {
   bool enabled_;
 };
 
-// Measurement files under `directory`, recognised by extension, in a stable order.
+// Measurement files under `directory`: those a reader claims by their content (an HDR image
+// beside them is not one), in a stable order.
 std::vector<std::string> FindMeasurements(const std::string& directory) {
   if (!fs::is_directory(directory)) {
     throw UsageError(directory + ": not a directory (give the bundled data with --data DIR)");
   }
   std::vector<std::string> paths;
   for (const auto& entry : fs::recursive_directory_iterator(directory)) {
-    if (!entry.is_regular_file()) continue;
-    std::string extension = entry.path().extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), ::tolower);
-    for (const FileFormat& format : FileFormats()) {
-      if (std::find(format.extensions.begin(), format.extensions.end(), extension) !=
-          format.extensions.end()) {
-        paths.push_back(entry.path().string());
-        break;
-      }
+    if (entry.is_regular_file() && FormatByContent(entry.path().string()) != nullptr) {
+      paths.push_back(entry.path().string());
     }
   }
   std::sort(paths.begin(), paths.end());
   return paths;
+}
+
+// Whether two measurements hold the same samples (the same data in two layouts, as the pbrt-v2
+// copies of the Cornell files are): equal directions and values to 1e-6, relative.
+bool SameSamples(const Measurement& a, const Measurement& b) {
+  if (a.samples.size() != b.samples.size()) return false;
+  for (size_t k = 0; k < a.samples.size(); ++k) {
+    const Sample& x = a.samples[k];
+    const Sample& y = b.samples[k];
+    if ((x.wi - y.wi).norm() > 1e-6 || (x.wo - y.wo).norm() > 1e-6 ||
+        ((x.value - y.value).abs() > 1e-6 * (1 + x.value.abs())).any()) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// Scattered samples (no evaluator) are previewed by interpolation, whose cost grows with their
+// number: the 262,144 cells of the BRDF slice image alone took minutes to render, far beyond the
+// demo's budget. Larger files are listed, not fitted.
+constexpr size_t kMaxScatteredSamplesFitted = 20000;
+
+// The real files the demo fits: the first file (by path) of every format among `bundled`, so
+// that each reader's data is fitted once, passing over a file whose samples repeat those of a file
+// listed before it (the pbrt-v2 copies of the Cornell ASTM files) and large scattered files.
+std::vector<std::pair<std::string, Measurement>> ChooseRealData(
+    const std::vector<std::string>& bundled) {
+  std::vector<std::pair<std::string, Measurement>> chosen;
+  std::vector<Measurement> earlier;
+  std::vector<const FileFormat*> formats_done;
+  for (const std::string& path : bundled) {
+    const FileFormat* format = FormatByContent(path);
+    Measurement measurement = ReadMeasurement(path);
+    const bool repeat = std::any_of(earlier.begin(), earlier.end(), [&](const Measurement& other) {
+      return SameSamples(other, measurement);
+    });
+    const bool format_done =
+        std::find(formats_done.begin(), formats_done.end(), format) != formats_done.end();
+    const bool too_large =
+        measurement.tabulated == nullptr && measurement.samples.size() > kMaxScatteredSamplesFitted;
+    if (!repeat && !format_done && !too_large) {
+      formats_done.push_back(format);
+      chosen.emplace_back(path, measurement);
+    }
+    earlier.push_back(std::move(measurement));
+  }
+  return chosen;
 }
 
 // The three simulated samples: what a gonioreflectometer, an image-based sphere rig and a
@@ -156,7 +197,8 @@ void FitDataset(const Measurement& measurement, const DemoOptions& options,
   }
   // The chosen fit's albedo curve, as a chart.
   const fitters::FitResult& chosen = dataset->fits[dataset->chosen];
-  const AlbedoCurve curve = ModelAlbedoCurve(chosen.model, AlbedoOptions{});
+  AlbedoCurve curve = ModelAlbedoCurve(chosen.model, AlbedoOptions{});
+  curve.source = chosen.model.ToString(7);  // the chart's title, for a person: 7 digits
   const std::string plot = "images/" + dataset->name + "-albedo.png";
   WriteAlbedoPlot(curve, out_dir + "/" + plot);
   dataset->images.push_back({"directional albedo of the " + chosen.model.name() + " fit", plot});
@@ -286,22 +328,7 @@ DemoResult RunDemo(const DemoOptions& options) {
       throw OutputError(options.out_dir, "cannot create the output directory: " + error.message());
     }
   }
-  // Real data fitted: every Cornell sample and the Zemax file; the pbrt-v2 copies of the
-  // Cornell files hold the same numbers, so only mystique (pbrt-v2 only) is added.
-  std::vector<std::string> real;
-  for (const std::string& path : bundled) {
-    const std::string name = fs::path(path).filename().string();
-    const bool astm = path.find(".astm") != std::string::npos;
-    // The Zemax file, not the RGL-EPFL materials that share its extension (docs/real-data.md
-    // fits those).
-    const bool zemax =
-        path.find(".bsdf") != std::string::npos && DetectFormat(path).name == "zemax";
-    if (astm || name == "mystique.brdf" || zemax) {
-      if (!options.quick || name == "cayman.astm" || zemax) {
-        real.push_back(path);
-      }
-    }
-  }
+  std::vector<std::pair<std::string, Measurement>> real = ChooseRealData(bundled);
   const std::string surface_json = WriteSurfaceSample(options.out_dir, options.quick);
   const std::vector<SimulatedSample> simulated = SimulatedSamples(options, surface_json);
   Steps steps(static_cast<int>(2 + 2 * simulated.size() + real.size()), options.quiet);
@@ -338,17 +365,17 @@ DemoResult RunDemo(const DemoOptions& options) {
     result.datasets.push_back(std::move(dataset));
   }
 
-  for (const std::string& path : real) {
+  for (auto& [path, measurement] : real) {
     steps.Announce("fitting every model to " + fs::relative(path, options.data_dir).string());
     DemoDataset dataset;
     dataset.name = fs::path(path).stem().string();
     dataset.kind = "real";
     dataset.source = fs::relative(path, options.data_dir).string();
     dataset.measurement_path = path;
-    const Measurement measurement = ReadMeasurement(path);
     dataset.title = measurement.SampleName() + " (" + measurement.format + ", real)";
     dataset.samples = measurement.samples.size();
     FitDataset(measurement, options, options.out_dir, &dataset);
+    measurement = Measurement();  // fitted: its samples are not needed again
     result.datasets.push_back(std::move(dataset));
   }
   steps.Announce("rendering measured-vs-fitted sheets");
@@ -357,8 +384,16 @@ DemoResult RunDemo(const DemoOptions& options) {
                     [&](size_t k) { RenderSheets(options, environment, &result.datasets[k]); });
   if (options.quick) {
     result.notes.push_back(
-        "--quick: coarser schedules, fewer rays, a 5,000-sample fit subsample "
-        "and only cayman and the Zemax file among the real data");
+        "--quick: coarser schedules, fewer rays and a 5,000-sample fit subsample");
+  }
+  for (const SummaryRow& row : result.bundled) {
+    if (row.measurement.tabulated == nullptr && row.summary.samples > kMaxScatteredSamplesFitted) {
+      result.notes.push_back(row.path + ": " + std::to_string(row.summary.samples) +
+                             " scattered samples, listed but not fitted (the demo fits files of "
+                             "up to " +
+                             std::to_string(kMaxScatteredSamplesFitted) +
+                             "; brdf fit takes any size)");
+    }
   }
   result.seconds = SecondsSince(start);
   return result;

@@ -11,8 +11,12 @@
 namespace brdf {
 
 std::string Measurement::SampleName() const {
-  auto it = metadata.find("sample");
-  if (it != metadata.end() && !it->second.empty()) return it->second;
+  // A file that names its sample, or describes it in one line (RGL-EPFL's "description":
+  // "TeckWrap vinyl wrapping film (Ibiza Sunset RD02)"), is named so rather than by its path.
+  for (const char* key : {"sample", "description"}) {
+    auto it = metadata.find(key);
+    if (it != metadata.end() && !it->second.empty()) return it->second;
+  }
   const size_t slash = source.find_last_of('/');
   return slash == std::string::npos ? source : source.substr(slash + 1);
 }

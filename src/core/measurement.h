@@ -69,7 +69,7 @@ struct Measurement {
   // `brdf plan`), so a fit weighs the samples equally instead of by the solid angle each
   // stands for (fitters/fit_samples.h).
   bool equal_weighting() const;
-  // The "sample" metadata, or the file name when there is none.
+  // The "sample" metadata, else the "description" (RGL-EPFL files), else the file name.
   std::string SampleName() const;
 };
 

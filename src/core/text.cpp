@@ -96,6 +96,25 @@ std::string PrintableText(std::string_view text) {
   return printable;
 }
 
+std::string ShortLabel(std::string_view text, size_t max_chars) {
+  if (text.size() <= max_chars) return std::string(text);
+  // A path names its file at the end: keep the file name, drop the directories before it.
+  std::string label;
+  size_t begin = 0;
+  while (begin <= text.size()) {
+    size_t end = text.find(' ', begin);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view word = text.substr(begin, end - begin);
+    const size_t slash = word.find_last_of('/');
+    if (slash != std::string_view::npos && slash + 1 < word.size()) word.remove_prefix(slash + 1);
+    label += word;
+    if (end < text.size()) label += ' ';
+    begin = end + 1;
+  }
+  if (label.size() <= max_chars || max_chars < 4) return label;
+  return label.substr(0, max_chars - 3) + "...";
+}
+
 namespace {
 std::string Quote(std::string_view field) {
   constexpr size_t kMaxShown = 40;

@@ -48,6 +48,10 @@ std::string FormatNumber(double value);
 // `value` rounded to `significant` digits, for people rather than for round trips.
 std::string FormatNumber(double value, int significant);
 
+// `text` in at most `max_chars` characters, for a label a person reads: a path in it is cut to
+// its file name first (the directories go, the name stays), then the end is cut with "...".
+std::string ShortLabel(std::string_view text, size_t max_chars);
+
 std::string_view Trim(std::string_view text);
 // `text` with every byte that is not printable ASCII shown as '?', for quoting file contents in
 // messages (a binary file must never put raw bytes on the terminal).

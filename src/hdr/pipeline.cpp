@@ -50,7 +50,9 @@ std::string ToneResult::Summary(bool radiometric) const {
                 "%dx%d, log-average luminance %.4g, max %.4g (the file's own units), "
                 "exposure %.4g",
                 display.width, display.height, scene.log_average, scene.max, exposure);
-  text += std::string(", ") + ToneOperatorName(mapping.tone_operator);
+  // "tone map" names the operator apart from the exposure factor printed before it.
+  text += std::string(", tone map ") + ToneOperatorName(mapping.tone_operator);
+  if (mapping.tone_operator == ToneOperator::kExposure) text += " (1 - exp(-x))";
   if (mapping.tone_operator == ToneOperator::kReinhardExtended) {
     text += Format(" L_white %.4g", mapping.white);
   }
@@ -76,7 +78,7 @@ std::string BlackPixelWarning(const SceneLuminance& scene) {
   if (!(factor >= kVisibleExposureFactor)) return "";
   return Format(
       "%lld of %lld pixels (%.3g%%) are black (luminance <= 0) and raise the automatic "
-      "exposure %.3gx (%.2g stops) over the rest's; set --exposure to choose it",
+      "exposure %.3gx (%.2g stops) over the rest's; give an explicit exposure to choose it",
       static_cast<long long>(scene.black_pixels), static_cast<long long>(scene.pixels),
       100.0 * scene.black_pixels / scene.pixels, factor, std::log2(factor));
 }

@@ -77,11 +77,23 @@ const std::vector<FileFormat>& FileFormats() {
        &SniffAlta,
        &ReadAlta,
        nullptr},
+      {"gonio-csv",
+       "in-plane spectral gonio table (Incident_angle,Measure_angle,<nm>...; degrees)",
+       {".csv"},
+       &SniffGonioCsv,
+       &ReadGonioCsv,
+       nullptr},
+      {"alta-slice",
+       "BRDF slice image, ALTA data_brdf_slice OpenEXR (theta_h x theta_d, phi_d 90 deg)",
+       {".exr"},
+       &SniffAltaSlice,
+       &ReadAltaSlice,
+       nullptr},
   };
   return formats;
 }
 
-const FileFormat& DetectFormat(const std::string& path) {
+const FileFormat* FormatByContent(const std::string& path) {
   struct stat info;
   if (::stat(path.c_str(), &info) != 0) throw InputError(path, "cannot open (no such file)");
   if (S_ISDIR(info.st_mode)) throw InputError(path, "is a directory, expected a measurement file");
@@ -94,8 +106,13 @@ const FileFormat& DetectFormat(const std::string& path) {
   if (head.empty()) throw ByteError(path, 0, "empty file, expected a measurement");
 
   for (const FileFormat& format : FileFormats()) {
-    if (format.sniff(head, info.st_size)) return format;
+    if (format.sniff(head, info.st_size)) return &format;
   }
+  return nullptr;
+}
+
+const FileFormat& DetectFormat(const std::string& path) {
+  if (const FileFormat* format = FormatByContent(path)) return *format;
   const std::string extension = LowerExtension(path);
   for (const FileFormat& format : FileFormats()) {
     for (const std::string& known : format.extensions) {

@@ -26,8 +26,8 @@ struct WriteReport {
 };
 
 struct FileFormat {
-  std::string name;  // "native-csv", "merl", "astm", "pbrt-brdf", "zemax", "rgl-bsdf", "alta"
-  std::string description;              // one line for --help and `brdf info`
+  std::string name;         // "native-csv", "merl", "astm", "zemax", "rgl-bsdf", "alta-slice", ...
+  std::string description;  // one line for --help and `brdf info`
   std::vector<std::string> extensions;  // lower case, with the dot
   // True when the first bytes of a file (up to 4 KiB) and its size say "this is mine".
   bool (*sniff)(std::string_view head, int64_t file_size) = nullptr;
@@ -42,6 +42,10 @@ struct FileFormat {
 
 const std::vector<FileFormat>& FileFormats();
 
+// The format whose sniffer claims the file by its content, or nullptr (the extension is not
+// looked at: a listing of measurement files among others asks this). Throws InputError when the
+// file cannot be opened or is not a regular file.
+const FileFormat* FormatByContent(const std::string& path);
 // The format of an existing file: by content, else by extension. Throws InputError when
 // neither identifies it (listing the formats it knows).
 const FileFormat& DetectFormat(const std::string& path);
@@ -74,5 +78,11 @@ bool SniffZemax(std::string_view head, int64_t file_size);
 
 Measurement ReadAlta(const std::string& path, const ReadOptions& options);
 bool SniffAlta(std::string_view head, int64_t file_size);
+
+Measurement ReadGonioCsv(const std::string& path, const ReadOptions& options);
+bool SniffGonioCsv(std::string_view head, int64_t file_size);
+
+Measurement ReadAltaSlice(const std::string& path, const ReadOptions& options);
+bool SniffAltaSlice(std::string_view head, int64_t file_size);
 
 }  // namespace brdf

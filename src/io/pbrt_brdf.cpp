@@ -140,9 +140,18 @@ Measurement ReadPbrtBrdf(const std::string& path, const ReadOptions& options) {
   if (measurement.samples.empty()) reader.Fail("no records after the wavelengths");
 
   // "# Cornell University, ...", "# Cayman Metallic", "# High-gloss Paint": the second line
-  // names the sample. Files without such a header (acryl_blue.brdf) are named by the file.
-  measurement.metadata["sample"] =
-      header_comments.size() >= 2 ? header_comments[1] : FileName(path);
+  // names the sample. It may go on to describe it ("Krylon spray enamel 7205, "True Blue";
+  // overcoat Plasti-kote 33 Glass Frosting Spray"): the name is its first clause, and the whole
+  // line stays in "comments". Files without such a header (acryl_blue.brdf) are named by the
+  // file, without its extension.
+  if (header_comments.size() >= 2) {
+    const std::string& line = header_comments[1];
+    measurement.metadata["sample"] =
+        std::string(Trim(std::string_view(line).substr(0, line.find(';'))));
+  } else {
+    const std::string file = FileName(path);
+    measurement.metadata["sample"] = file.substr(0, file.find_last_of('.'));
+  }
   if (!header_comments.empty()) {
     std::string comments;
     for (const std::string& comment : header_comments) {

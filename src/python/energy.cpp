@@ -136,7 +136,7 @@ notes, warnings; report: the same dict as `brdf energy --json`.)doc")
       py::arg("theta_steps") = defaults.theta_steps, py::arg("samples") = defaults.samples,
       py::arg("seed") = defaults.seed, py::arg("threads") = 0, R"doc(
 Directional albedo a(theta) per RGB channel and the energy-conservation check, as
-`brdf energy` (DESIGN §7); the same inputs give the same numbers, bit for bit.
+`brdf energy`; the same inputs give the same numbers, bit for bit.
 
 source:      a Model, a FitResult (its model), a Measurement (through its table evaluator, or
              inverse-distance interpolation of scattered samples), or the CLI's SOURCE text:

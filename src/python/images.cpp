@@ -111,7 +111,7 @@ void RegisterImages(py::module_& module) {
       py::arg("preset") = py::none(), py::arg("size") = render_defaults.size,
       py::arg("spp") = render_defaults.spp, py::arg("seed") = render_defaults.seed,
       py::arg("threads") = 0, R"doc(
-A preview sphere of a material, as `brdf render` computes it before tone mapping (DESIGN §8):
+A preview sphere of a material, as `brdf render` computes it before tone mapping:
 the same inputs and seed give the same floats as its `--exr FILE --exr-type float` output.
 
 material: a Model, a FitResult (its model), a Measurement, or the CLI's MATERIAL text (model
@@ -186,7 +186,7 @@ around it. The GIL is released while rendering.)doc");
       py::arg("bloom_strength") = tone_defaults.bloom_strength,
       py::arg("bloom_sigma") = tone_defaults.bloom_sigma, py::arg("gamma") = tone_defaults.gamma,
       R"doc(
-The HDR pipeline, as `brdf tonemap` runs it (DESIGN §8): exposure -> bloom -> tone mapping on
+The HDR pipeline, as `brdf tonemap` runs it: exposure -> bloom -> tone mapping on
 luminance -> transfer curve -> 8 bits. The same image and options give the same bytes as the
 pixels of its PNG.
 

@@ -97,7 +97,7 @@ MeasurementPointer FromArrays(const DirectionArray& wi, const DirectionArray& wo
 
 void RegisterMeasurement(py::module_& module) {
   py::class_<Measurement, MeasurementPointer>(module, "Measurement", R"doc(
-A measurement in memory (DESIGN §4): N samples of (wi, wo, rgb), optional sigma and weight,
+A measurement in memory: N samples of (wi, wo, rgb), optional sigma and weight,
 and metadata. Directions are unit vectors in the local frame (z = surface normal; wi toward
 the light, wo toward the detector); rgb is the BRDF in 1/sr without the cosine factor.
 
@@ -231,7 +231,7 @@ Returns a Measurement. Raises InputError (with .path and .line or .byte) for a b
       },
       py::arg("sample"), py::arg("schedule") = "hemisphere", py::arg("instrument") = "",
       py::arg("seed") = 1, py::arg("threads") = 0, R"doc(
-The virtual gonioreflectometer, as `brdf measure` (DESIGN §5); the same seed gives the same
+The virtual gonioreflectometer, as `brdf measure`; the same seed gives the same
 samples, bit for bit, whatever the thread count.
 
 sample:     "model:MODEL" (a flat analytic sample; MODEL a model string or FIT.json),

@@ -48,7 +48,7 @@ py::array_t<double> EvalModel(const Model& model, const DirectionArray& wi,
 }
 
 constexpr const char* kEvalDoc = R"doc(
-f(wi, wo) in 1/sr, no cosine factor (DESIGN §1), the library's evaluation of the model.
+f(wi, wo) in 1/sr, no cosine factor, the library's evaluation of the model.
 wi, wo: (N, 3) arrays of unit directions in the local frame (z = normal), or one (3,)
 direction used for every row; not normalised here. Returns (N, 3) float64 (or (3,)).
 The GIL is released during the loop.)doc";
@@ -57,7 +57,7 @@ The GIL is released during the loop.)doc";
 
 void RegisterModel(py::module_& module) {
   py::class_<Model>(module, "Model", R"doc(
-A reflectance model with its parameter values (DESIGN §2), from brdfkit.model(spec) or a fit.
+A reflectance model with its parameter values, from brdfkit.model(spec) or a fit.
 name: the model's name; string: the canonical model string (reads back to the same doubles);
 params: {name: value} (RGB parameters as [r, g, b]); info: the model's parameter table.)doc")
       .def_property_readonly("name", &Model::name)
@@ -88,7 +88,7 @@ UsageError for a bad string, InputError for a bad report.)doc");
         }
         return list;
       },
-      "Every model of the registry, in the order of DESIGN §2: a list of {name, formula, params, "
+      "Every model brdfkit knows, in its registry's order: a list of {name, formula, params, "
       "auto} (auto: a rung `--model auto` climbs).");
 }
 
@@ -169,7 +169,7 @@ the fitted model's f.)doc")
       py::arg("grey_specular") = defaults.grey_specular, py::arg("illuminant") = "D65",
       py::arg("reciprocal") = false,
       R"doc(
-Fits a reflectance model to a measurement with Ceres, as `brdf fit` does (DESIGN §6); the same
+Fits a reflectance model to a measurement with Ceres, as `brdf fit` does; the same
 inputs give the same report, bit for bit (time_s aside).
 
 measurement:    a Measurement, or the path of a measurement file (read as brdfkit.read does).

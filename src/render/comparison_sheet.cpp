@@ -8,6 +8,7 @@
 
 #include "core/errors.h"
 #include "core/format.h"
+#include "core/text.h"
 
 namespace brdf {
 namespace {
@@ -60,9 +61,9 @@ cv::Mat ToBgr(const Image8& image) {
 }
 
 void Label(cv::Mat& sheet, const std::string& text, int x, int width) {
-  // Long model strings are cut to what fits (about 8 px per character at this scale).
-  const size_t fits = static_cast<size_t>(std::max(4, width / 8));
-  const std::string shown = text.size() > fits ? text.substr(0, fits - 3) + "..." : text;
+  // Long labels are cut to what fits (about 8 px per character at this scale), a file's path
+  // to its name first.
+  const std::string shown = ShortLabel(text, static_cast<size_t>(std::max(4, width / 8)));
   cv::putText(sheet, shown, cv::Point(x + 4, 19), cv::FONT_HERSHEY_SIMPLEX, 0.45,
               cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
 }
