@@ -28,6 +28,11 @@ Command AddFitCommand(CLI::App& parent) {
   app->add_option("FILE", options->path, "measurement file (any format brdf info reads)")
       ->required();
   AddFitOptions(app, &options->fit);
+  app->add_option("--instrument", options->fit.instrument,
+                  "fit through this instrument (JSON, as brdf measure takes): each reading is "
+                  "predicted as the model averaged over the source and detector apertures. "
+                  "Default: the instrument the measurement records (brdf measure's CSV does); "
+                  "'none': the model at the nominal directions");
   app->add_option("--threads", options->threads,
                   "worker threads (0: all cores); the output does not depend on it")
       ->capture_default_str();
@@ -42,8 +47,9 @@ Command AddFitCommand(CLI::App& parent) {
 
   return {app, [options]() {
             const fitters::FitOptions fit_options = options->fit.ToFitOptions(options->threads);
-            const Measurement measurement =
+            Measurement measurement =
                 ReadForFit(options->path, options->fit, /*samples=*/!options->plot.empty());
+            options->fit.ApplyInstrument(&measurement);
 
             const fitters::ModelFit model_fit =
                 fitters::FitModelOrAuto(measurement, options->fit.model, fit_options);
