@@ -170,7 +170,7 @@ FitResult FitComposition(const ModelInfo& info, const PreparedSamples& prepared,
         predicted[k] =
             PredictReading(current, robust_samples, instrument != nullptr ? &nodes : nullptr, k);
       });
-      model_weighted = ModelWeighted(robust_samples, variance, predicted);
+      model_weighted = ModelWeighted(robust_samples, prepared.sigma, variance, predicted);
     }
     objective_holder = std::make_unique<FitObjective<ModelType>>(
         model_weights ? model_weighted : robust_samples, options.loss, options.grey_specular,

@@ -298,18 +298,47 @@ VarianceFunction FitVarianceFunction(const PreparedSamples& prepared) {
   return variance;
 }
 
+namespace {
+
+// The share lambda of channel c (fit_samples.h: VarianceFunction).
+double FollowedShare(const std::vector<Rgb>& stated, const VarianceFunction& variance,
+                     const std::vector<FitSample>& samples, const std::vector<Rgb>& predicted,
+                     int c) {
+  // Least squares of y = sigma^2 - v(prediction) on x = v(value) - v(prediction), each pair
+  // weighted by 1 / sigma^4 (relative errors), through the origin.
+  double xy = 0, xx = 0;
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const double sigma = stated[k][c];
+    if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+    const double model = variance.At(predicted[k])[c];
+    const double x = variance.At(samples[k].value)[c] - model;
+    const double y = sigma * sigma - model, w = 1 / std::pow(sigma, 4);
+    xy += w * x * y;
+    xx += w * x * x;
+  }
+  return xx > 0 ? std::clamp(xy / xx, 0.0, 1.0) : 0.0;
+}
+
+}  // namespace
+
 std::vector<FitSample> ModelWeighted(const std::vector<FitSample>& samples,
+                                     const std::vector<Rgb>& stated,
                                      const VarianceFunction& variance,
-                                     const std::vector<Rgb>& predicted) {
+                                     const std::vector<Rgb>& predicted, Rgb* followed) {
+  Rgb share;
+  for (int c = 0; c < 3; ++c) share[c] = FollowedShare(stated, variance, samples, predicted, c);
+  if (followed != nullptr) *followed = share;
   std::vector<FitSample> weighted = samples;
   tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
-    const Rgb stated = variance.At(samples[k].value), model = variance.At(predicted[k]);
+    const Rgb reading = variance.At(samples[k].value), model = variance.At(predicted[k]);
     for (int c = 0; c < 3; ++c) {
-      // Within a factor 10 of the stated sigma: a prediction near zero where the reading is
-      // not (or the reverse) must not give one sample all the weight.
-      if (stated[c] > 0 && model[c] > 0) {
-        weighted[k].scale[c] *= std::clamp(std::sqrt(stated[c] / model[c]), 0.1, 10.0);
-      }
+      const double sigma = stated[k][c];
+      if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+      // At least a tenth of the stated variance: a prediction near zero where the reading is
+      // not must not give one sample all the weight.
+      const double variance_k =
+          std::max(sigma * sigma - share[c] * (reading[c] - model[c]), 0.01 * sigma * sigma);
+      weighted[k].scale[c] *= sigma / std::sqrt(variance_k);
     }
   });
   return weighted;

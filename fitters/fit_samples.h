@@ -90,13 +90,18 @@ PreparedSamples PrepareSamples(const Measurement& measurement);
 
 // Unbiased weights (DESIGN §6). A reading's stated sigma is often estimated from the reading
 // itself (photon counts, a Monte Carlo estimate's spread): a reading that came out low states
-// a smaller sigma and weighs more, which pulls the fit down (a traced surface's lobe comes out
-// 6 % too sharp). The fit weighs by the sigma the model predicts instead, iteratively: per
-// channel, the variance the file states as a function of the value, v(x) = a + b x + c x^2
-// (a, b, c >= 0; read, shot and relative noise), is fitted to all (value, sigma^2) pairs once;
-// each sample's sigma is then its stated one times sqrt(v(prediction) / v(value)), so what the
-// sigma owes to the reading's own noise is replaced by the model's prediction while what does
-// not depend on the value (e.g. positioning noise on a lobe's flank) stays.
+// a smaller sigma and weighs more, which pulls the fit down (Neyman's chi-square; a traced
+// surface's lobe came out 6 % too sharp). The fit weighs by the sigma the model predicts
+// instead, iteratively. Per channel, the variance the file states as a function of the value,
+// v(x) = a + b x + c x^2 (a, b, c >= 0: read, shot and relative noise), is fitted to all
+// (value, sigma^2) pairs once. At a model's prediction F_k, how much the stated variances follow
+// the readings' own noise is the share lambda in [0, 1] of the least squares
+//   sigma_k^2 - v(F_k) = lambda (v(value_k) - v(F_k))
+// (pooled over all samples: 1 when every sigma was computed from its reading, 0 when the
+// sigmas were computed from noise-free expectations, as `brdf measure` does for model:
+// samples), and sample k is weighted by the variance sigma_k^2 - lambda (v(value_k) - v(F_k)):
+// what its sigma owes to its own reading is replaced by what the model predicts, what does not
+// depend on the value (positioning noise on a lobe's flank) stays.
 struct VarianceFunction {
   Rgb a = Rgb::Zero(), b = Rgb::Zero(), c = Rgb::Zero();
   Rgb At(const Rgb& value) const {
@@ -107,11 +112,13 @@ struct VarianceFunction {
 // The variance function of `prepared`'s stated sigma (PreparedSamples::sigma, which must not
 // be empty), by least squares of v(value_k) / sigma_k^2 - 1.
 VarianceFunction FitVarianceFunction(const PreparedSamples& prepared);
-// `samples` (of `prepared`, in its order) with every residual multiplier rescaled to the sigma
-// predicted at `predicted` (one per sample): scale · sqrt(v(value) / v(predicted)).
+// `samples` with every residual multiplier rescaled from the `stated` sigma (one per sample, in
+// their order) to the one predicted at `predicted` (see above); `followed`, when given,
+// receives lambda per channel.
 std::vector<FitSample> ModelWeighted(const std::vector<FitSample>& samples,
+                                     const std::vector<Rgb>& stated,
                                      const VarianceFunction& variance,
-                                     const std::vector<Rgb>& predicted);
+                                     const std::vector<Rgb>& predicted, Rgb* followed = nullptr);
 
 // A deterministic stratified subsample of at most `max_samples`: every sample in the top 1% by
 // luminance (the specular peak, which a uniform draw would miss) plus a seeded uniform draw of
