@@ -26,7 +26,7 @@ brdf::ReadOptions FitArguments::ToReadOptions() const {
   return options;
 }
 
-void FitArguments::ApplyInstrument(Measurement* measurement) const {
+void ApplyInstrument(const std::string& instrument, Measurement* measurement) {
   if (instrument.empty()) return;
   if (instrument == "none") {
     measurement->metadata.erase(kInstrumentKey);

@@ -21,17 +21,17 @@ struct FitArguments {
   bool grey_specular = false;
   std::string illuminant = "D65";
   bool reciprocal = false;  // RGL-EPFL files: the reciprocal reading (ReadOptions::reciprocal)
-  // The instrument the readings are fitted through (DESIGN §6): "" = the one the measurement
-  // records, if any; "none" = none (the model at the nominal directions); else a JSON file.
-  std::string instrument;
 
   bool Automatic() const { return model == "auto"; }
   // Checks the model name (a usage error names the known ones) and the numbers.
   FitOptions ToFitOptions(int threads) const;
   brdf::ReadOptions ToReadOptions() const;
-  // Records `instrument` in the measurement (fit_samples.h: kInstrumentKey) or, for "none",
-  // removes the one it records. Throws InputError naming a bad instrument file.
-  void ApplyInstrument(Measurement* measurement) const;
 };
+
+// `brdf fit --instrument`, the instrument the readings are fitted through (DESIGN §6): ""
+// leaves the one the measurement records, if any; "none" removes it (the model at the nominal
+// directions); a JSON file is recorded in the measurement (fit_samples.h: kInstrumentKey).
+// Throws InputError naming a bad instrument file.
+void ApplyInstrument(const std::string& instrument, Measurement* measurement);
 
 }  // namespace brdf::fitters
