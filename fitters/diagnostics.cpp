@@ -14,6 +14,7 @@
 #include "core/angles.h"
 #include "core/format.h"
 #include "core/text.h"
+#include "fitters/reading_nodes.h"
 
 namespace brdf::fitters {
 namespace {
@@ -343,11 +344,16 @@ ResidualCheck CheckResiduals(const Model& model, const PreparedSamples& prepared
         return partial;
       },
       [](double a, double b) { return std::max(a, b); });
-  // |z| of each channel of each sample, in file order; kNoScore where a channel has none.
+  // |z| of each channel of each sample, in file order; kNoScore where a channel has none. The
+  // model predicts each reading as the fit did: through the instrument when there is one.
+  const SampleNodes nodes = prepared.instrument != nullptr
+                                ? InstrumentNodes(*prepared.instrument, model, samples)
+                                : SampleNodes{};
+  const SampleNodes* through = prepared.instrument != nullptr ? &nodes : nullptr;
   std::vector<double> scores(3 * usable, kNoScore);
   const auto score_sample = [&](size_t u) {
     const FitSample& sample = samples[u];
-    const Rgb f = model.Eval(sample.wi, sample.wo);
+    const Rgb f = PredictReading(model, samples, through, u);
     for (int c = 0; c < 3; ++c) {
       double difference = sample.value[c] - f[c];
       if (std::abs(difference) <= kRoundingFloor * largest) difference = 0;
@@ -416,7 +422,20 @@ void AppendFitDiagnostics(const PreparedSamples& prepared, FitResult* result) {
   }
   CheckIdentifiability(result);
   if (result->model.info().has_lobe() && !LobeVanished(*result)) {
-    CheckLobeResolution(prepared.samples, result);
+    if (prepared.instrument == nullptr) {
+      CheckLobeResolution(prepared.samples, result);
+    } else {
+      // Through an instrument a reading sees every direction of its apertures: the lobe is
+      // resolved where their quadrature nodes reach its flank (reading_nodes.h).
+      const SampleNodes nodes =
+          InstrumentNodes(*prepared.instrument, result->model, prepared.samples);
+      std::vector<FitSample> seen(nodes.nodes.size());
+      for (size_t n = 0; n < seen.size(); ++n) {
+        seen[n].wi = nodes.nodes[n].wi;
+        seen[n].wo = nodes.nodes[n].wo;
+      }
+      CheckLobeResolution(seen, result);
+    }
   }
   CheckCoverage(prepared.samples, result);
   CheckResidualWarnings(prepared, result);

@@ -3,14 +3,17 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <queue>
 #include <tuple>
 
 #include "core/angles.h"
 #include "core/errors.h"
+#include "core/sampling.h"
 #include "core/text.h"
 #include "fitters/covariance.h"
 #include "fitters/fit.h"
+#include "fitters/reading_nodes.h"
 
 namespace brdf::fitters {
 namespace {
@@ -46,8 +49,11 @@ struct DesignState {
     const FitObjective<M> objective(none, fit_options.loss, fit_options.grey_specular);
     gradients = ParamGradients<M>(objective.At(v.data()), static_cast<int>(v.size()));
   }
-  FitObjective<M> Objective(const std::vector<FitSample>& samples) const {
-    return FitObjective<M>(samples, fit_options.loss, fit_options.grey_specular);
+  // The fit's objective over `samples`, through `nodes` when given (reading_nodes.h).
+  FitObjective<M> Objective(const std::vector<FitSample>& samples,
+                            const SampleNodes* nodes = nullptr) const {
+    return FitObjective<M>(samples, fit_options.loss, fit_options.grey_specular,
+                           FitObjective<M>::kDefaultBatch, nodes);
   }
 };
 
@@ -78,9 +84,13 @@ std::vector<FitSample> WhitenedSamples(const Model& model, const std::vector<Des
 // U_k (free variables x 3 channels) of every point, stacked: column 3 k + c.
 template <typename M>
 Eigen::MatrixXd Sensitivities(const DesignState<M>& state, const Model& model,
-                              const std::vector<DesignPoint>& points) {
+                              const std::vector<DesignPoint>& points,
+                              const gonio::Instrument* instrument) {
   const std::vector<FitSample> samples = WhitenedSamples(model, points);
-  const FitObjective<M> objective = state.Objective(samples);
+  const SampleNodes nodes =
+      instrument != nullptr ? InstrumentNodes(*instrument, model, samples) : SampleNodes{};
+  const FitObjective<M> objective =
+      state.Objective(samples, instrument != nullptr ? &nodes : nullptr);
   const int m = static_cast<int>(state.free.size());
   Eigen::MatrixXd u(m, 3 * static_cast<Eigen::Index>(points.size()));
   objective.ForEachRow(objective.At(state.v.data()),
@@ -131,7 +141,7 @@ bool Conflicts(const DesignPoint& a, const DesignPoint& b, double cos_separation
 
 template <typename M>
 DesignResult Choose(const Model& model, const std::vector<DesignPoint>& candidates,
-                    const DesignOptions& options) {
+                    const DesignOptions& options, const gonio::Instrument* instrument) {
   const DesignState<M> state(model);
   const int m = static_cast<int>(state.free.size());
   if (m == 0) {
@@ -147,7 +157,7 @@ DesignResult Choose(const Model& model, const std::vector<DesignPoint>& candidat
   }
   const bool trace = options.criterion != DesignCriterion::kD;
   const Eigen::MatrixXd c = trace ? CriterionRows(state, model, options) : Eigen::MatrixXd();
-  const Eigen::MatrixXd u = Sensitivities(state, model, candidates);
+  const Eigen::MatrixXd u = Sensitivities(state, model, candidates, instrument);
   const auto block = [&](size_t k) { return u.middleCols(3 * static_cast<Eigen::Index>(k), 3); };
 
   const double mean_information = u.squaredNorm() / (static_cast<double>(candidates.size()) * m);
@@ -228,11 +238,12 @@ DesignResult Choose(const Model& model, const std::vector<DesignPoint>& candidat
 }
 
 template <typename M>
-double LogDet(const Model& model, const std::vector<DesignPoint>& points) {
+double LogDet(const Model& model, const std::vector<DesignPoint>& points,
+              const gonio::Instrument* instrument) {
   const DesignState<M> state(model);
   const int m = static_cast<int>(state.free.size());
   if (m == 0 || points.empty()) return -kInf;
-  const Eigen::MatrixXd u = Sensitivities(state, model, points);
+  const Eigen::MatrixXd u = Sensitivities(state, model, points, instrument);
   const Eigen::MatrixXd information = u * u.transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(information);
   const Eigen::VectorXd values = eigen.eigenvalues();
@@ -261,7 +272,12 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement,
       expected[3 * k + c] = std::pow(prepared.samples[k].scale[c] * independent[k][c], 2);
     }
   }
-  const FitObjective<M> objective = state.Objective(prepared.samples);
+  // Through the instrument the measurement records, as the fit will read it.
+  const SampleNodes nodes = prepared.instrument != nullptr
+                                ? InstrumentNodes(*prepared.instrument, model, prepared.samples)
+                                : SampleNodes{};
+  const FitObjective<M> objective =
+      state.Objective(prepared.samples, prepared.instrument != nullptr ? &nodes : nullptr);
   const typename FitObjective<M>::Point at = objective.At(state.v.data());
   NormalSums sums = objective.Sums(at, &expected);
   sums.Symmetric();
@@ -272,12 +288,75 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement,
     // Every value times (1 + e): the residuals change by -scale f e, the variables by
     // A^-1 g e with g = sum J^T scale f, which adds var(e) g g^T to B.
     Eigen::VectorXd g = Eigen::VectorXd::Zero(a.rows());
+    const auto shared = objective.Prepare(at);
     objective.ForEachRow(at, [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
       const FitSample& sample = prepared.samples[row / 3];
       const int c = static_cast<int>(row % 3);
-      g += jacobian * (sample.scale[c] * sample.value[c]);
+      // The reading as the model predicts it (the noise-free value).
+      const double value = objective.Value(at, shared, static_cast<size_t>(row / 3))[c];
+      g += jacobian * (sample.scale[c] * value);
     });
     b += noise.common_scale_variance * g * g.transpose();
+  }
+  if (noise.light_arm_variance > 0) {
+    // The light arm turns the incidence of group g by e_g (two axes about wi, variance s^2
+    // each): the residuals of its readings change by -scale dF/de e_g, the variables by
+    // A^-1 h_g.e_g with h_g = sum over the group of J^T scale dF/de, adding s^2 h h^T to B per
+    // axis and group. dF/de by central differences one s wide, through the instrument as the
+    // fit predicts.
+    const double s = std::sqrt(noise.light_arm_variance);
+    const std::vector<FitSample>& samples = prepared.samples;
+    const Model& truth = model;
+    std::vector<Rgb> slope[2];
+    for (int axis = 0; axis < 2; ++axis) {
+      std::vector<FitSample> turned[2] = {samples, samples};
+      for (int side = 0; side < 2; ++side) {
+        for (FitSample& sample : turned[side]) {
+          const Frame frame = Frame::FromZ(sample.wi);
+          const Vec3& direction = axis == 0 ? frame.x : frame.y;
+          sample.wi = (sample.wi + (side == 0 ? s : -s) * direction).normalized();
+        }
+      }
+      std::vector<Rgb> value[2];
+      for (int side = 0; side < 2; ++side) {
+        const SampleNodes turned_nodes =
+            prepared.instrument != nullptr
+                ? InstrumentNodes(*prepared.instrument, truth, turned[side])
+                : SampleNodes{};
+        value[side].resize(samples.size());
+        for (size_t k = 0; k < samples.size(); ++k) {
+          value[side][k] =
+              turned[side][k].wi.z() > 0
+                  ? PredictReading(truth, turned[side],
+                                   prepared.instrument != nullptr ? &turned_nodes : nullptr, k)
+                  : Rgb(Rgb::Zero());
+        }
+      }
+      slope[axis].resize(samples.size());
+      for (size_t k = 0; k < samples.size(); ++k) {
+        slope[axis][k] = (value[0][k] - value[1][k]) / (2 * s);
+      }
+    }
+    // h per (group, axis), the groups in order of first appearance.
+    std::map<std::tuple<double, double, double>, int> group_of;
+    std::vector<Eigen::VectorXd> h;
+    objective.ForEachRow(at, [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
+      const size_t k = static_cast<size_t>(row / 3);
+      const int c = static_cast<int>(row % 3);
+      const Vec3& wi = samples[k].wi;
+      const auto key = std::make_tuple(wi.x(), wi.y(), wi.z());
+      auto found = group_of.find(key);
+      if (found == group_of.end()) {
+        found = group_of.emplace(key, static_cast<int>(h.size() / 2)).first;
+        h.push_back(Eigen::VectorXd::Zero(a.rows()));
+        h.push_back(Eigen::VectorXd::Zero(a.rows()));
+      }
+      for (int axis = 0; axis < 2; ++axis) {
+        h[2 * found->second + axis] += jacobian * (samples[k].scale[c] * slope[axis][k][c]);
+      }
+    });
+    for (const Eigen::VectorXd& column : h)
+      b += noise.light_arm_variance * column * column.transpose();
   }
   PredictedErrors errors;
   errors.note = state.held_note;
@@ -366,21 +445,24 @@ std::vector<std::string> DesignWarnings(const Model& model) {
 }
 
 DesignResult ChooseDesign(const Model& model, const std::vector<DesignPoint>& candidates,
-                          const DesignOptions& options) {
+                          const DesignOptions& options, const gonio::Instrument* instrument) {
   return VisitModelType(model.name(), [&](auto model_type) {
-    return Choose<decltype(model_type)>(model, candidates, options);
+    return Choose<decltype(model_type)>(model, candidates, options, instrument);
   });
 }
 
-double InformationLogDet(const Model& model, const std::vector<DesignPoint>& points) {
-  return VisitModelType(
-      model.name(), [&](auto model_type) { return LogDet<decltype(model_type)>(model, points); });
+double InformationLogDet(const Model& model, const std::vector<DesignPoint>& points,
+                         const gonio::Instrument* instrument) {
+  return VisitModelType(model.name(), [&](auto model_type) {
+    return LogDet<decltype(model_type)>(model, points, instrument);
+  });
 }
 
-ExpectedNoise ExpectedNoiseAt(const std::vector<DesignPoint>& points,
-                              double common_scale_variance) {
+ExpectedNoise ExpectedNoiseAt(const std::vector<DesignPoint>& points, double common_scale_variance,
+                              double light_arm_variance) {
   ExpectedNoise noise;
   noise.common_scale_variance = common_scale_variance;
+  noise.light_arm_variance = light_arm_variance;
   noise.independent_sigma.reserve(points.size());
   for (const DesignPoint& point : points)
     noise.independent_sigma.push_back(point.independent_sigma);

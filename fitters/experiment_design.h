@@ -26,6 +26,7 @@
 
 #include "core/measurement.h"
 #include "core/vec.h"
+#include "gonio/instrument.h"
 #include "models/registry.h"
 
 namespace brdf::fitters {
@@ -66,12 +67,17 @@ std::vector<std::string> DesignWarnings(const Model& model);
 
 // Greedy choice of options.budget candidates (see above). Throws UsageError when the budget
 // exceeds what the candidates and the separation allow, when the criterion's parameter is at a
-// bound, or when a sigma is not positive; deterministic (ties go to the lower index).
+// bound, or when a sigma is not positive; deterministic (ties go to the lower index). With an
+// `instrument`, every reading is predicted through it as a fit through it will predict it
+// (reading_nodes.h): the model averaged over the source and detector apertures.
 DesignResult ChooseDesign(const Model& model, const std::vector<DesignPoint>& candidates,
-                          const DesignOptions& options);
+                          const DesignOptions& options,
+                          const gonio::Instrument* instrument = nullptr);
 
-// log det of the information of `points` on the free variables (-inf when singular).
-double InformationLogDet(const Model& model, const std::vector<DesignPoint>& points);
+// log det of the information of `points` on the free variables (-inf when singular), through
+// `instrument` when given.
+double InformationLogDet(const Model& model, const std::vector<DesignPoint>& points,
+                         const gonio::Instrument* instrument = nullptr);
 
 struct PredictedErrors {
   std::vector<double> stderr_values;  // one per model parameter; NaN when not available
@@ -88,16 +94,23 @@ struct ExpectedNoise {
   // reference): it moves the fit along the direction a common scale of all values moves it,
   // whatever the geometries.
   double common_scale_variance = 0;
+  // Variance (radians², per axis) of the light arm's positioning jitter: it moves the incidence
+  // once for all the readings of that incidence (samples of equal wi), which shift together.
+  double light_arm_variance = 0;
 };
 
-// The noise of a run at `points`: their independent sigmas and the run's common scale variance.
-ExpectedNoise ExpectedNoiseAt(const std::vector<DesignPoint>& points, double common_scale_variance);
+// The noise of a run at `points`: their independent sigmas, the run's common scale variance and
+// the light arm's jitter variance.
+ExpectedNoise ExpectedNoiseAt(const std::vector<DesignPoint>& points, double common_scale_variance,
+                              double light_arm_variance = 0);
 
 // The standard errors `brdf fit` (L2 loss, its default) will report for a measurement of
 // `model` at the geometries of `measurement`, whose `sigma` is the sigma its readings will
 // state: the fit's own sample weights (PrepareSamples: solid angle, the file's weights,
 // sigma) and the sandwich covariance with the expected squared residuals (from `noise`) in
-// place of measured ones. `measurement`'s values must be the model's (noise-free).
+// place of measured ones. `measurement`'s values must be the model's (noise-free). A
+// measurement that records its instrument (fit_samples.h: kInstrumentKey) is predicted through
+// it, as the fit will read it.
 PredictedErrors PredictErrors(const Model& model, const Measurement& measurement,
                               const ExpectedNoise& noise = {});
 

@@ -18,6 +18,7 @@
 #include "fitters/diagnostics.h"
 #include "fitters/energy_check.h"
 #include "fitters/fit_composition.h"
+#include "fitters/reading_nodes.h"
 
 namespace brdf::fitters {
 
@@ -92,6 +93,10 @@ void FinishFit(const PreparedSamples& prepared, FitResult* result) {
   const auto start = std::chrono::steady_clock::now();
   CheckFitEnergy(result);
   AppendFitDiagnostics(prepared, result);  // docs/stability.md
+  if (prepared.instrument != nullptr) {
+    const std::string blur = ApertureBlurWarning(*prepared.instrument, result->model);
+    if (!blur.empty()) result->warnings.push_back(blur);
+  }
   result->time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

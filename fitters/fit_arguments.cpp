@@ -1,5 +1,6 @@
 #include "fitters/fit_arguments.h"
 
+#include "gonio/instrument.h"
 #include "models/registry.h"
 
 namespace brdf::fitters {
@@ -23,6 +24,15 @@ brdf::ReadOptions FitArguments::ToReadOptions() const {
   options.illuminant = ParseIlluminant(illuminant);
   options.reciprocal = reciprocal;
   return options;
+}
+
+void ApplyInstrument(const std::string& instrument, Measurement* measurement) {
+  if (instrument.empty()) return;
+  if (instrument == "none") {
+    measurement->metadata.erase(kInstrumentKey);
+    return;
+  }
+  measurement->metadata[kInstrumentKey] = gonio::ReadInstrument(instrument).ToJson();
 }
 
 }  // namespace brdf::fitters

@@ -28,4 +28,10 @@ struct FitArguments {
   brdf::ReadOptions ToReadOptions() const;
 };
 
+// `brdf fit --instrument`, the instrument the readings are fitted through (DESIGN §6): ""
+// leaves the one the measurement records, if any; "none" removes it (the model at the nominal
+// directions); a JSON file is recorded in the measurement (fit_samples.h: kInstrumentKey).
+// Throws InputError naming a bad instrument file.
+void ApplyInstrument(const std::string& instrument, Measurement* measurement);
+
 }  // namespace brdf::fitters

@@ -6,10 +6,12 @@
 #pragma once
 
 #include <ceres/ceres.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,7 @@
 #include "fitters/fit.h"
 #include "fitters/model_fitter.h"
 #include "fitters/multi_start.h"
+#include "fitters/reading_nodes.h"
 #include "fitters/solve.h"
 
 namespace brdf::fitters {
@@ -29,6 +32,10 @@ namespace fit_detail {
 inline constexpr size_t kStartSamples = 4000;
 // Reweighting rounds of the robust fit on the subsample (fit, reweight, refit).
 inline constexpr int kRobustRounds = 4;
+// Polishes at most: the first at the subsample's optimum, then from each polished optimum while
+// the instrument's nodes change (reading_nodes.h), and at least once more with weights from a
+// polished optimum (VarianceFunction).
+inline constexpr int kPolishRounds = 4;
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Samples per chunk of the deterministic sums of the fit metrics.
 inline constexpr int64_t kMetricsGrain = 4096;
@@ -127,22 +134,61 @@ FitResult FitComposition(const ModelInfo& info, const PreparedSamples& prepared,
   int iterations = optimum.iterations;
 
   // 3. Polish on every sample (the final solve, whose convergence is reported), with the
-  // robust weights of the subsample's optimum.
+  // robust weights of the subsample's optimum. Through the measurement's instrument
+  // (reading_nodes.h) and with weights from sigmas the model predicts (VarianceFunction), both
+  // made at the current point: the polish is repeated from its optimum until the nodes no
+  // longer change and the weights have been predicted from a polished optimum.
   std::vector<FitSample> weighted;
   if (options.robust != Robust::kNone) {
     double scale = 0;
     weighted = fitter.Reweight(all, best, &scale);
   }
-  const std::vector<FitSample>& polish_samples = options.robust == Robust::kNone ? all : weighted;
-  const FitObjective<ModelType> objective(polish_samples, options.loss, options.grey_specular,
-                                          options.samples_per_block);
+  const std::vector<FitSample>& robust_samples = options.robust == Robust::kNone ? all : weighted;
+  const bool model_weights = !prepared.sigma.empty();
+  const VarianceFunction variance =
+      model_weights ? FitVarianceFunction(prepared) : VarianceFunction{};
+  std::vector<FitSample> model_weighted;
+  SampleNodes nodes;
+  const gonio::Instrument* instrument = prepared.instrument.get();
   std::vector<double> final_variables = best;
+  std::unique_ptr<FitObjective<ModelType>> objective_holder;
   NormalSums sums;
   bool have_sums = false;
-  const ceres::Solver::Summary summary =
-      SolveLeastSquares(objective, &final_variables, fitter.lower(), fitter.upper(),
-                        options.max_iterations, &sums, &have_sums);
-  iterations += static_cast<int>(summary.iterations.size());
+  ceres::Solver::Summary summary;
+  for (int round = 0; round < fit_detail::kPolishRounds; ++round) {
+    const Model current(info, fitter.Params(final_variables));
+    if (instrument != nullptr) {
+      SampleNodes next = InstrumentNodes(*instrument, current, robust_samples);
+      if (round >= 2 && next.SameLayout(nodes)) break;
+      nodes = std::move(next);
+    } else if (round >= (model_weights ? 2 : 1)) {
+      break;
+    }
+    if (model_weights) {
+      std::vector<Rgb> predicted(all.size());
+      tbb::parallel_for(size_t{0}, all.size(), [&](size_t k) {
+        predicted[k] =
+            PredictReading(current, robust_samples, instrument != nullptr ? &nodes : nullptr, k);
+      });
+      model_weighted = ModelWeighted(robust_samples, prepared.sigma, variance, predicted);
+    }
+    objective_holder = std::make_unique<FitObjective<ModelType>>(
+        model_weights ? model_weighted : robust_samples, options.loss, options.grey_specular,
+        options.samples_per_block, instrument != nullptr ? &nodes : nullptr);
+    have_sums = false;
+    std::vector<double> variables = final_variables;
+    summary = SolveLeastSquares(*objective_holder, &variables, fitter.lower(), fitter.upper(),
+                                options.max_iterations, &sums, &have_sums);
+    iterations += static_cast<int>(summary.iterations.size());
+    if (!std::all_of(variables.begin(), variables.end(),
+                     [](double v) { return std::isfinite(v); })) {
+      have_sums = false;
+      break;
+    }
+    final_variables = variables;
+  }
+  const FitObjective<ModelType>& objective = *objective_holder;
+  const std::vector<FitSample>& polish_samples = objective.samples();
 
   std::vector<double> params = fitter.Params(final_variables);
   bool finite =
@@ -159,6 +205,12 @@ FitResult FitComposition(const ModelInfo& info, const PreparedSamples& prepared,
   result.samples = all.size();
   result.skipped = prepared.skipped_missing + prepared.skipped_invalid;
   result.weighting = prepared.weighting;
+  if (model_weights) result.weighting += "; sigma predicted from the model (iteratively)";
+  if (instrument != nullptr) {
+    result.weighting += "; readings predicted through the instrument's apertures (" +
+                        std::to_string(nodes.points_per_reading) + "-point quadrature on " +
+                        std::to_string(nodes.averaged) + " samples near a lobe)";
+  }
   result.converged = finite && Converged(summary);
   result.iterations = iterations;
   result.final_cost = summary.final_cost;

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -72,6 +73,11 @@ void Release(PreparedSamples* prepared) {
 
 PreparedSamples PrepareSamples(const Measurement& measurement) {
   PreparedSamples prepared;
+  const auto recorded = measurement.metadata.find(kInstrumentKey);
+  if (recorded != measurement.metadata.end()) {
+    prepared.instrument = std::make_shared<const gonio::Instrument>(gonio::ParseInstrument(
+        recorded->second, measurement.source + " (metadata " + kInstrumentKey + ")"));
+  }
   // The usable samples, in file order, copied in parallel: each chunk of the measurement counts
   // its usable ones, the running sum of the counts places each chunk's copies, and the vector is
   // sized once (growing a vector of a million samples by doubling would hold the old and the new
@@ -183,6 +189,100 @@ PreparedSamples PrepareSamples(const Measurement& measurement) {
     }
   });
   return prepared;
+}
+
+VarianceFunction FitVarianceFunction(const PreparedSamples& prepared) {
+  VarianceFunction variance;
+  const std::vector<FitSample>& samples = prepared.samples;
+  for (int c = 0; c < 3; ++c) {
+    // Normal equations of the rows [1, x, x^2] / sigma^2 against 1.
+    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d right = Eigen::Vector3d::Zero();
+    for (size_t k = 0; k < samples.size(); ++k) {
+      const double sigma = prepared.sigma[k][c];
+      if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+      const double x = std::max(samples[k].value[c], 0.0), s2 = sigma * sigma;
+      const Eigen::Vector3d row(1 / s2, x / s2, x * x / s2);
+      normal += row * row.transpose();
+      right += row;
+    }
+    // The best of the non-negative solutions on every subset of the three terms (at most 7
+    // small solves): the cost 1 - 2 r.t + t^T N t up to a constant.
+    Eigen::Vector3d best = Eigen::Vector3d::Zero();
+    double best_cost = 0;
+    for (int subset = 1; subset < 8; ++subset) {
+      std::vector<int> terms;
+      for (int t = 0; t < 3; ++t) {
+        if (subset & (1 << t)) terms.push_back(t);
+      }
+      const int m = static_cast<int>(terms.size());
+      Eigen::MatrixXd sub(m, m);
+      Eigen::VectorXd sub_right(m);
+      for (int i = 0; i < m; ++i) {
+        sub_right[i] = right[terms[i]];
+        for (int j = 0; j < m; ++j) sub(i, j) = normal(terms[i], terms[j]);
+      }
+      const Eigen::VectorXd solution = sub.ldlt().solve(sub_right);
+      if (!solution.allFinite() || (solution.array() < 0).any()) continue;
+      Eigen::Vector3d t = Eigen::Vector3d::Zero();
+      for (int i = 0; i < m; ++i) t[terms[i]] = solution[i];
+      const double cost = t.dot(normal * t) - 2 * t.dot(right);
+      if (cost < best_cost) {
+        best_cost = cost;
+        best = t;
+      }
+    }
+    variance.a[c] = best[0];
+    variance.b[c] = best[1];
+    variance.c[c] = best[2];
+  }
+  return variance;
+}
+
+namespace {
+
+// The share lambda of channel c (fit_samples.h: VarianceFunction).
+double FollowedShare(const std::vector<Rgb>& stated, const VarianceFunction& variance,
+                     const std::vector<FitSample>& samples, const std::vector<Rgb>& predicted,
+                     int c) {
+  // Least squares of y = sigma^2 - v(prediction) on x = v(value) - v(prediction), each pair
+  // weighted by 1 / sigma^4 (relative errors), through the origin.
+  double xy = 0, xx = 0;
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const double sigma = stated[k][c];
+    if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+    const double model = variance.At(predicted[k])[c];
+    const double x = variance.At(samples[k].value)[c] - model;
+    const double y = sigma * sigma - model, w = 1 / std::pow(sigma, 4);
+    xy += w * x * y;
+    xx += w * x * x;
+  }
+  return xx > 0 ? std::clamp(xy / xx, 0.0, 1.0) : 0.0;
+}
+
+}  // namespace
+
+std::vector<FitSample> ModelWeighted(const std::vector<FitSample>& samples,
+                                     const std::vector<Rgb>& stated,
+                                     const VarianceFunction& variance,
+                                     const std::vector<Rgb>& predicted, Rgb* followed) {
+  Rgb share;
+  for (int c = 0; c < 3; ++c) share[c] = FollowedShare(stated, variance, samples, predicted, c);
+  if (followed != nullptr) *followed = share;
+  std::vector<FitSample> weighted = samples;
+  tbb::parallel_for(size_t{0}, samples.size(), [&](size_t k) {
+    const Rgb reading = variance.At(samples[k].value), model = variance.At(predicted[k]);
+    for (int c = 0; c < 3; ++c) {
+      const double sigma = stated[k][c];
+      if (!(sigma > 0) || !std::isfinite(sigma)) continue;
+      // At least a tenth of the stated variance: a prediction near zero where the reading is
+      // not must not give one sample all the weight.
+      const double variance_k =
+          std::max(sigma * sigma - share[c] * (reading[c] - model[c]), 0.01 * sigma * sigma);
+      weighted[k].scale[c] *= sigma / std::sqrt(variance_k);
+    }
+  });
+  return weighted;
 }
 
 std::vector<FitSample> Subsample(const std::vector<FitSample>& samples, size_t max_samples,

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/measurement.h"
 #include "core/vec.h"
+#include "gonio/instrument.h"
 
 namespace brdf::fitters {
 
@@ -59,7 +61,14 @@ struct PreparedSamples {
   size_t skipped_invalid = 0;  // NaN/Inf values, or a direction at or below the horizon
   std::string weighting;       // how the solid-angle weights were found
   bool designed = false;       // a designed schedule's (equal weights; may crowd onto a lobe)
+  // The instrument the measurement records (kInstrumentKey), through which the fit predicts
+  // every reading (reading_nodes.h); null: the model at the nominal directions.
+  std::shared_ptr<const gonio::Instrument> instrument;
 };
+
+// The metadata key under which a measurement records its instrument as JSON (`brdf measure`
+// writes it; `brdf fit --instrument` sets or, with "none", removes it).
+inline constexpr const char* kInstrumentKey = "instrument_json";
 
 // Frees the samples (the counts and names stay) and hands their pages back to the system, once
 // the fit and its diagnostics are done with them (a MERL table's samples are 114 MB).
@@ -74,9 +83,42 @@ void Release(PreparedSamples* prepared);
 //  * scattered data: per incidence direction, the area of the detector directions closest to
 //    each sample, estimated from the distance to its k-th nearest neighbour (k = 4).
 // Weights are normalized to mean 1; the file's weight column multiplies them and its sigma
-// columns divide the residuals. The samples are the same for every loss: each loss transforms
+// columns divide the residuals (the fit then weighs by sigmas predicted from the model:
+// fit_composition.h). The samples are the same for every loss: each loss transforms
 // the data where it compares them (LossTarget).
 PreparedSamples PrepareSamples(const Measurement& measurement);
+
+// Unbiased weights (DESIGN §6). A reading's stated sigma is often estimated from the reading
+// itself (photon counts, a Monte Carlo estimate's spread): a reading that came out low states
+// a smaller sigma and weighs more, which pulls the fit down (Neyman's chi-square; a traced
+// surface's lobe came out 6 % too sharp). The fit weighs by the sigma the model predicts
+// instead, iteratively. Per channel, the variance the file states as a function of the value,
+// v(x) = a + b x + c x^2 (a, b, c >= 0: read, shot and relative noise), is fitted to all
+// (value, sigma^2) pairs once. At a model's prediction F_k, how much the stated variances follow
+// the readings' own noise is the share lambda in [0, 1] of the least squares
+//   sigma_k^2 - v(F_k) = lambda (v(value_k) - v(F_k))
+// (pooled over all samples: 1 when every sigma was computed from its reading, 0 when the
+// sigmas were computed from noise-free expectations, as `brdf measure` does for model:
+// samples), and sample k is weighted by the variance sigma_k^2 - lambda (v(value_k) - v(F_k)):
+// what its sigma owes to its own reading is replaced by what the model predicts, what does not
+// depend on the value (positioning noise on a lobe's flank) stays.
+struct VarianceFunction {
+  Rgb a = Rgb::Zero(), b = Rgb::Zero(), c = Rgb::Zero();
+  Rgb At(const Rgb& value) const {
+    const Rgb x = value.max(0.0);
+    return a + b * x + c * x * x;
+  }
+};
+// The variance function of `prepared`'s stated sigma (PreparedSamples::sigma, which must not
+// be empty), by least squares of v(value_k) / sigma_k^2 - 1.
+VarianceFunction FitVarianceFunction(const PreparedSamples& prepared);
+// `samples` with every residual multiplier rescaled from the `stated` sigma (one per sample, in
+// their order) to the one predicted at `predicted` (see above); `followed`, when given,
+// receives lambda per channel.
+std::vector<FitSample> ModelWeighted(const std::vector<FitSample>& samples,
+                                     const std::vector<Rgb>& stated,
+                                     const VarianceFunction& variance,
+                                     const std::vector<Rgb>& predicted, Rgb* followed = nullptr);
 
 // A deterministic stratified subsample of at most `max_samples`: every sample in the top 1% by
 // luminance (the specular peak, which a uniform draw would miss) plus a seeded uniform draw of

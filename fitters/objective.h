@@ -18,6 +18,10 @@
 // pair of variables. Nothing is stored per row, and nothing is remembered between calls: the
 // solver asks for a point once (solve.h, through ceres::EvaluationCallback).
 //
+// Through an instrument (reading_nodes.h) a sample's value is a weighted sum over its quadrature
+// nodes, f = sum_n w_n f(wi_n, wo_n), and so is d f / d params: the terms' geometry is kept per
+// node, and a sample without an instrument is one node (its own directions, weight 1).
+//
 // The batches are summed in a fixed tree (DeterministicReduce), so the result does not depend on
 // the thread count. The autodiff functor of residual.h evaluates the same residuals and is the
 // tests' reference for these derivatives.
@@ -33,6 +37,7 @@
 #include "core/deterministic_reduce.h"
 #include "fitters/fit_samples.h"
 #include "fitters/parameterization.h"
+#include "fitters/reading_nodes.h"
 #include "fitters/residual.h"
 
 namespace brdf::fitters {
@@ -59,23 +64,29 @@ class FitObjective {
   // Samples per batch of the sums: a batch's rows stay in the core's cache.
   static constexpr int kDefaultBatch = 256;
 
-  // The least squares over `samples` (which must outlive this object) under `loss`.
+  // The least squares over `samples` (which must outlive this object) under `loss`, each
+  // sample's reading predicted through its `nodes` (InstrumentNodes of these samples; null: at
+  // its nominal directions). `nodes` must outlive this object too.
   FitObjective(const std::vector<FitSample>& samples, Loss loss, bool grey_specular,
-               int batch_size = kDefaultBatch)
+               int batch_size = kDefaultBatch, const SampleNodes* nodes = nullptr)
       : samples_(samples),
         loss_(loss),
         grey_specular_(grey_specular),
         batch_(std::max(batch_size, 1)),
         n_(VariableLayout<M>::Count(grey_specular)),
-        geometry_(samples.size()) {
-    // What each term takes of a sample's directions, once (models/term.h: GeometryOf).
+        nodes_(nodes),
+        geometry_(nodes != nullptr ? nodes->nodes.size() : samples.size()),
+        above_(geometry_.size()) {
+    // What each term takes of a node's directions, once (models/term.h: GeometryOf).
     DeterministicReduce(
-        static_cast<int64_t>(samples.size()), 4096, 0,
+        static_cast<int64_t>(geometry_.size()), 4096, 0,
         [&](int64_t begin, int64_t end, int) {
-          for (int64_t k = begin; k < end; ++k) {
+          for (int64_t n = begin; n < end; ++n) {
+            const Vec3& wi = nodes != nullptr ? nodes->nodes[n].wi : samples[n].wi;
+            const Vec3& wo = nodes != nullptr ? nodes->nodes[n].wo : samples[n].wo;
+            above_[n] = models::AboveHorizon(wi, wo);
             M::ForEachTerm([&](auto term, auto index) {
-              std::get<decltype(index)::value>(geometry_[k]) =
-                  decltype(term)::GeometryOf(samples[k].wi, samples[k].wo);
+              std::get<decltype(index)::value>(geometry_[n]) = decltype(term)::GeometryOf(wi, wo);
             });
           }
           return 0;
@@ -94,6 +105,7 @@ class FitObjective {
   bool grey_specular() const { return grey_specular_; }
   Loss loss() const { return loss_; }
   const std::vector<FitSample>& samples() const { return samples_; }
+  const SampleNodes* nodes() const { return nodes_; }
 
   // The parameters at a point and d params / d x there (row-major, kNumParams x n).
   struct Point {
@@ -185,15 +197,18 @@ class FitObjective {
     return prepared;
   }
 
-  // The model's value f at sample k, from the terms' values at `at`.
+  // The model's prediction f of sample k's reading, from the terms' values at `at`.
   Rgb Value(const Point& at, const Prepared& prepared, size_t k) const {
     Rgb f = Rgb::Zero();
-    if (models::AboveHorizon(samples_[k].wi, samples_[k].wo)) {
+    for (size_t n = NodeBegin(k); n < NodeEnd(k); ++n) {
+      if (!above_[n]) continue;
+      Rgb node_f = Rgb::Zero();
       M::ForEachTerm([&](auto term, auto index) {
         constexpr int kIndex = decltype(index)::value;
-        f += decltype(term)::Value(at.params.data() + M::kOffsets[index],
-                                   std::get<kIndex>(prepared), std::get<kIndex>(geometry_[k]));
+        node_f += decltype(term)::Value(at.params.data() + M::kOffsets[index],
+                                        std::get<kIndex>(prepared), std::get<kIndex>(geometry_[n]));
       });
+      f += NodeWeight(n) * node_f;
     }
     return f;
   }
@@ -228,6 +243,11 @@ class FitObjective {
     return static_cast<int>(
         std::min<size_t>(batch_, samples_.size() - static_cast<size_t>(b) * batch_));
   }
+  // Sample k's nodes: geometry_[NodeBegin(k), NodeEnd(k)).
+  size_t NodeBegin(size_t k) const { return nodes_ != nullptr ? nodes_->first[k] : k; }
+  size_t NodeEnd(size_t k) const { return nodes_ != nullptr ? nodes_->first[k + 1] : k + 1; }
+  double NodeWeight(size_t n) const { return nodes_ != nullptr ? nodes_->nodes[n].weight : 1.0; }
+
   // The row of G for channel c's parameter `p` (of the table's rows).
   const double* G(const Point& at, int c, int p) const {
     return at.gradients.data() + static_cast<size_t>(channel_slots_[c][p]) * n_;
@@ -252,8 +272,11 @@ class FitObjective {
     const FitSample& sample = samples_[sample_index];
     Rgb f = Rgb::Zero();
     double df[3][kRows] = {};
-    const bool above = models::AboveHorizon(sample.wi, sample.wo);
-    if (above) {
+    bool above = false;
+    for (size_t n = NodeBegin(sample_index); n < NodeEnd(sample_index); ++n) {
+      if (!above_[n]) continue;
+      above = true;
+      const double weight = NodeWeight(n);
       int column = 0;
       M::ForEachTerm([&](auto term, auto index) {
         using Term = decltype(term);
@@ -261,11 +284,13 @@ class FitObjective {
         Rgb term_f;
         double term_gradient[3][Term::kGradientSize];
         constexpr int kIndex = decltype(index)::value;
-        Term::ValueAndGradient(p, std::get<kIndex>(prepared),
-                               std::get<kIndex>(geometry_[sample_index]), &term_f, term_gradient);
-        f += term_f;
+        Term::ValueAndGradient(p, std::get<kIndex>(prepared), std::get<kIndex>(geometry_[n]),
+                               &term_f, term_gradient);
+        f += weight * term_f;
         for (int c = 0; c < 3; ++c) {
-          for (int k = 0; k < Term::kGradientSize; ++k) df[c][column + k] = term_gradient[c][k];
+          for (int k = 0; k < Term::kGradientSize; ++k) {
+            df[c][column + k] += weight * term_gradient[c][k];
+          }
         }
         column += Term::kGradientSize;
       });
@@ -289,6 +314,7 @@ class FitObjective {
     double moments[3][kTriangle] = {}, weighted[3][kTriangle] = {}, gradient[3][kRows] = {};
     double residuals[3 * kMaxStackBatch];
     const bool whole_batch = count <= kMaxStackBatch;
+    if (whole_batch) std::fill_n(residuals, 3 * count, 0.0);  // every row is written below
     double half_squared = 0;
     const Prepared prepared = Prepare(at);
     for (int k = 0; k < count; ++k) {
@@ -348,7 +374,9 @@ class FitObjective {
   bool grey_specular_;
   size_t batch_;
   int n_;
-  std::vector<typename M::Geometry> geometry_;  // one per sample
+  const SampleNodes* nodes_;
+  std::vector<typename M::Geometry> geometry_;  // one per node
+  std::vector<char> above_;                     // per node: both directions above the horizon
   int channel_slots_[3][kRows];
 };
 

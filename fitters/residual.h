@@ -6,6 +6,7 @@
 
 #include "fitters/fit_samples.h"
 #include "fitters/parameterization.h"
+#include "fitters/reading_nodes.h"
 
 namespace brdf::fitters {
 
@@ -26,12 +27,20 @@ inline double LossPredictionDerivative(Loss loss, double f, double cos_theta_i) 
 
 // The residuals of a batch of samples as a function of the fitter's variables x (one parameter
 // block, parameterization.h), for automatic differentiation: the reference the analytic
-// derivatives of FitObjective (objective.h) are tested against.
+// derivatives of FitObjective (objective.h) are tested against. With `nodes` (of the samples
+// from which `samples` is taken, the first being sample `first`), each reading is predicted
+// through its quadrature nodes as the objective predicts it.
 template <typename ModelType>
 class BatchResidual {
  public:
-  BatchResidual(bool grey_specular, Loss loss, const FitSample* samples, int count)
-      : grey_specular_(grey_specular), loss_(loss), samples_(samples), count_(count) {}
+  BatchResidual(bool grey_specular, Loss loss, const FitSample* samples, int count,
+                const SampleNodes* nodes = nullptr, size_t first = 0)
+      : grey_specular_(grey_specular),
+        loss_(loss),
+        samples_(samples),
+        count_(count),
+        nodes_(nodes),
+        first_(first) {}
 
   int num_residuals() const { return 3 * count_; }
 
@@ -42,7 +51,16 @@ class BatchResidual {
     for (int k = 0; k < count_; ++k) {
       const FitSample& sample = samples_[k];
       // Directions stay plain doubles: only the parameters carry derivatives.
-      const RgbT<T> f = ModelType::template Eval<T>(params, sample.wi, sample.wo);
+      RgbT<T> f;
+      if (nodes_ == nullptr) {
+        f = ModelType::template Eval<T>(params, sample.wi, sample.wo);
+      } else {
+        f = RgbT<T>::Constant(T(0));
+        for (size_t n = nodes_->first[first_ + k]; n < nodes_->first[first_ + k + 1]; ++n) {
+          const gonio::ReadingNode& node = nodes_->nodes[n];
+          f += ModelType::template Eval<T>(params, node.wi, node.wo) * T(node.weight);
+        }
+      }
       const double cos_theta_i = sample.cos_theta_i();
       const Rgb target = LossTarget(loss_, sample.value, cos_theta_i);
       for (int c = 0; c < 3; ++c) {
@@ -58,6 +76,8 @@ class BatchResidual {
   Loss loss_;
   const FitSample* samples_;
   int count_;
+  const SampleNodes* nodes_;
+  size_t first_;
 };
 
 }  // namespace brdf::fitters

@@ -6,6 +6,7 @@
 
 #include "core/angles.h"
 #include "core/colour.h"
+#include "core/sampling.h"
 
 namespace brdf::gonio {
 namespace {
@@ -92,6 +93,27 @@ std::vector<AperturePoint> ApertureQuadrature(double aperture_radius, double lob
     }
   }
   return points;
+}
+
+void AppendReadingNodes(const Instrument& instrument,
+                        const std::vector<AperturePoint>& source_quadrature,
+                        const std::vector<AperturePoint>& detector_quadrature, const Vec3& wi,
+                        const Vec3& wo, std::vector<ReadingNode>* nodes) {
+  const double cos_detector = instrument.DetectorCosHalfAngle();
+  const Frame detector_frame = Frame::FromZ(wo);
+  const size_t first = nodes->size();
+  const double weight_sum = ForEachSourceDirection(
+      instrument, wi, source_quadrature, [&](const Vec3& wi_source, double weight) {
+        for (const AperturePoint& detector : detector_quadrature) {
+          const Vec3 wo_detector = detector_frame.FromLocal(
+              SampleUniformCone(Point2(detector.u1, detector.u2), cos_detector));
+          if (wo_detector.z() <= 0) continue;
+          nodes->push_back({wi_source, wo_detector, weight * detector.weight * wo_detector.z()});
+        }
+      });
+  for (size_t n = first; n < nodes->size(); ++n) {
+    (*nodes)[n].weight = weight_sum > 0 ? (*nodes)[n].weight / weight_sum : 0.0;
+  }
 }
 
 }  // namespace brdf::gonio

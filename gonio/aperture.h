@@ -55,4 +55,22 @@ double ForEachSourceDirection(const Instrument& instrument, const Vec3& wi,
   return weight_sum;
 }
 
+// One point of a reading's quadrature: a direction of the source, one of the detector, and the
+// point's weight in the reading.
+struct ReadingNode {
+  Vec3 wi, wo;
+  double weight = 0;
+};
+
+// Appends the nodes of the reading at nominal (wi, wo) (instrument.h):
+//   R = sum over nodes of weight f(wi_node, wo_node),
+// the weights holding the source's irradiance, the quadrature weights and cos(theta_o) of the
+// detector direction, normalised by the source's weight sum. Detector directions at or below
+// the horizon see nothing and are left out. ModelSample reads its samples through these nodes
+// and a fit through an instrument predicts its readings with them (fitters/reading_nodes.h).
+void AppendReadingNodes(const Instrument& instrument,
+                        const std::vector<AperturePoint>& source_quadrature,
+                        const std::vector<AperturePoint>& detector_quadrature, const Vec3& wi,
+                        const Vec3& wo, std::vector<ReadingNode>* nodes);
+
 }  // namespace brdf::gonio

@@ -49,6 +49,8 @@ std::string InstrumentSummary(const Instrument& instrument) {
   return text;
 }
 
+}  // namespace
+
 double ReferenceReading(const Instrument& instrument) {
   const ModelSample reference(LambertReference(instrument.reference_rho), instrument);
   return reference
@@ -57,10 +59,8 @@ double ReferenceReading(const Instrument& instrument) {
       .mean();
 }
 
-}  // namespace
-
 Rgb PositioningSigma(const GonioSample& sample, const Instrument& instrument, const Vec3& wi,
-                     const Vec3& wo, const Rgb& reading) {
+                     const Vec3& wo, const Rgb& reading, bool light_arm) {
   const double jitter = DegToRad(instrument.jitter_deg);
   if (jitter <= 0) return Rgb::Zero();
   if (!sample.HasExpectedReading()) {
@@ -73,9 +73,10 @@ Rgb PositioningSigma(const GonioSample& sample, const Instrument& instrument, co
     return sample.ExpectedReading(instrument, light, detector);
   };
   // The two arms move independently (instrument.h), so their variances add.
-  const Rgb light_arm = JitterSigma(wi, jitter, [&](const Vec3& d) { return at(d, wo); });
   const Rgb detector_arm = JitterSigma(wo, jitter, [&](const Vec3& d) { return at(wi, d); });
-  return (light_arm.square() + detector_arm.square()).sqrt();
+  if (!light_arm) return detector_arm;
+  const Rgb light = JitterSigma(wi, jitter, [&](const Vec3& d) { return at(d, wo); });
+  return (light.square() + detector_arm.square()).sqrt();
 }
 
 namespace {
@@ -208,13 +209,18 @@ NoiseModel::NoiseModel(const GonioSample& sample, const Instrument& instrument)
 Rgb NoiseModel::Sigma(const Vec3& wi, const Vec3& wo) const { return SigmaOf(wi, wo, true); }
 
 Rgb NoiseModel::IndependentSigma(const Vec3& wi, const Vec3& wo) const {
-  return SigmaOf(wi, wo, /*include_reference=*/false);
+  return SigmaOf(wi, wo, /*include_common=*/false);
 }
 
-Rgb NoiseModel::SigmaOf(const Vec3& wi, const Vec3& wo, bool include_reference) const {
+double NoiseModel::LightArmVariance() const {
+  const double jitter = DegToRad(instrument_.jitter_deg);
+  return jitter * jitter;
+}
+
+Rgb NoiseModel::SigmaOf(const Vec3& wi, const Vec3& wo, bool include_common) const {
   const Rgb reading = sample_.ExpectedReading(instrument_, wi, wo);
-  return CombinedSigma(calibration_.ExpectedSigma(reading, wo.z(), include_reference), Rgb::Zero(),
-                       PositioningSigma(sample_, instrument_, wi, wo, reading),
+  return CombinedSigma(calibration_.ExpectedSigma(reading, wo.z(), include_common), Rgb::Zero(),
+                       PositioningSigma(sample_, instrument_, wi, wo, reading, include_common),
                        calibration_.Slope(wo.z()));
 }
 

@@ -44,8 +44,14 @@ Measurement Measure(const MeasureOptions& options, const Schedule& schedule);
 // cosine's share only, a lower bound. `reading` is the measured R, used by that fallback.
 // Without this term the stated sigma leaves out an error that grows as tan(theta_o) toward
 // grazing and along a lobe's flanks (docs/gonio.md).
+// Without `light_arm`, the detector arm's share alone (the light arm moves once per incidence,
+// so its share is common to the incidence's readings).
 Rgb PositioningSigma(const GonioSample& sample, const Instrument& instrument, const Vec3& wi,
-                     const Vec3& wo, const Rgb& reading);
+                     const Vec3& wo, const Rgb& reading, bool light_arm = true);
+
+// The noise-free reading R of the instrument's Lambertian reference at its reference geometry,
+// through the instrument's apertures: what every calibrated value is divided by.
+double ReferenceReading(const Instrument& instrument);
 
 // Converts expected detector readings into calibrated BRDF values the way the instrument does
 // (instrument.h): photon counts with shot and read noise, divided by the reference's counts.
@@ -107,15 +113,18 @@ class NoiseModel {
   NoiseModel(const GonioSample& sample, const Instrument& instrument);
   Rgb Sigma(const Vec3& wi, const Vec3& wo) const;
   // The part of Sigma that is independent from reading to reading: all of it but the run
-  // reference's error, which is common to every reading (CommonScaleVariance). At a bright peak
-  // that common part dominates the stated sigma (its variance grows as the square of the
-  // reading, the counts' own as the reading), so a fit's scatter follows this, not Sigma.
+  // reference's error, which is common to every reading (CommonScaleVariance), and the light
+  // arm's jitter, common to the readings of one incidence (LightArmVariance). At a bright peak
+  // those common parts dominate the stated sigma (the reference's variance grows as the square
+  // of the reading, the counts' own as the reading), so a fit's scatter follows this, not Sigma.
   Rgb IndependentSigma(const Vec3& wi, const Vec3& wo) const;
   // Relative variance of the scale error common to every value of a run (the reference).
   double CommonScaleVariance() const { return calibration_.ReferenceRelativeVariance(); }
+  // Variance (radians², per axis) of the light arm's jitter, common to an incidence's readings.
+  double LightArmVariance() const;
 
  private:
-  Rgb SigmaOf(const Vec3& wi, const Vec3& wo, bool include_reference) const;
+  Rgb SigmaOf(const Vec3& wi, const Vec3& wo, bool include_common) const;
 
   const GonioSample& sample_;
   const Instrument& instrument_;

@@ -34,21 +34,12 @@ std::string ModelSample::Modelled() const {
 }
 
 Rgb ModelSample::Reading(const Instrument& instrument, const Vec3& wi, const Vec3& wo) const {
-  const double cos_detector = instrument.DetectorCosHalfAngle();
-  const Frame detector_frame = Frame::FromZ(wo);
+  std::vector<ReadingNode> nodes;
+  nodes.reserve(source_quadrature_.size() * detector_quadrature_.size());
+  AppendReadingNodes(instrument, source_quadrature_, detector_quadrature_, wi, wo, &nodes);
   Rgb sum = Rgb::Zero();
-  const double weight_sum = ForEachSourceDirection(
-      instrument, wi, source_quadrature_, [&](const Vec3& wi_source, double weight) {
-        Rgb detector_sum = Rgb::Zero();
-        for (const AperturePoint& detector : detector_quadrature_) {
-          const Vec3 wo_detector = detector_frame.FromLocal(
-              SampleUniformCone(Point2(detector.u1, detector.u2), cos_detector));
-          if (wo_detector.z() <= 0) continue;
-          detector_sum += detector.weight * model_.Eval(wi_source, wo_detector) * wo_detector.z();
-        }
-        sum += weight * detector_sum;
-      });
-  return weight_sum > 0 ? Rgb(sum / weight_sum) : Rgb(Rgb::Zero());
+  for (const ReadingNode& node : nodes) sum += node.weight * model_.Eval(node.wi, node.wo);
+  return sum;
 }
 
 Readings ModelSample::Measure(const Instrument& instrument, const Vec3& wi,

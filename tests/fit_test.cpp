@@ -171,7 +171,10 @@ TEST(Fit, SubsampledStartLandsWhereAFullStartDoes) {
           << text << " parameter " << p;
     }
     EXPECT_NEAR(streamed_fit.bic, ceres_fit.bic, 1e-9 * std::abs(ceres_fit.bic)) << text;
-    EXPECT_NEAR(streamed_fit.final_cost, ceres_fit.final_cost, 1e-9 * ceres_fit.final_cost) << text;
+    // The weights are the model's (fit_samples.h: VarianceFunction), predicted at the optimum of
+    // the previous polish, which the two starts reach to within their tolerances: the final
+    // costs agree to those tolerances' square, not to round-off.
+    EXPECT_NEAR(streamed_fit.final_cost, ceres_fit.final_cost, 1e-8 * ceres_fit.final_cost) << text;
   }
 }
 

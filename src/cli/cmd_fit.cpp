@@ -18,7 +18,7 @@ namespace brdf::cli {
 
 Command AddFitCommand(CLI::App& parent) {
   struct Options {
-    std::string path, out, plot;
+    std::string path, out, plot, instrument;
     FitArguments fit;
     int threads = 0;
     bool json = false, quiet = false;
@@ -28,6 +28,11 @@ Command AddFitCommand(CLI::App& parent) {
   app->add_option("FILE", options->path, "measurement file (any format brdf info reads)")
       ->required();
   AddFitOptions(app, &options->fit);
+  app->add_option("--instrument", options->instrument,
+                  "fit through this instrument (JSON, as brdf measure takes): each reading is "
+                  "predicted as the model averaged over the source and detector apertures. "
+                  "Default: the instrument the measurement records (brdf measure's CSV does); "
+                  "'none': the model at the nominal directions");
   app->add_option("--threads", options->threads,
                   "worker threads (0: all cores); the output does not depend on it")
       ->capture_default_str();
@@ -42,7 +47,8 @@ Command AddFitCommand(CLI::App& parent) {
 
   return {app, [options]() {
             const fitters::FitOptions fit_options = options->fit.ToFitOptions(options->threads);
-            const Measurement measurement = ReadForFit(options->path, options->fit);
+            Measurement measurement = ReadForFit(options->path, options->fit);
+            fitters::ApplyInstrument(options->instrument, &measurement);
 
             const fitters::ModelFit model_fit =
                 fitters::FitModelOrAuto(measurement, options->fit.model, fit_options);

@@ -2,8 +2,9 @@
 // [--criterion d|a|param:NAME] [--candidates SCHEDULE] [--json] [--quiet] --out plan.csv:
 // a measurement schedule of N direction pairs chosen to minimise the fitted parameters'
 // variance (DESIGN §3; docs/planning.md). The design is fitters/experiment_design.h, weighted
-// by the virtual instrument's noise model (gonio/measure.h); `brdf measure --schedule
-// file:plan.csv` measures it.
+// by the virtual instrument's noise model (gonio/measure.h) and predicting every reading through
+// the instrument's apertures as `brdf fit` will (fitters/reading_nodes.h); `brdf measure
+// --schedule file:plan.csv` measures it.
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -21,6 +22,8 @@
 #include "core/progress.h"
 #include "core/text.h"
 #include "fitters/experiment_design.h"
+#include "fitters/fit_samples.h"
+#include "fitters/reading_nodes.h"
 #include "gonio/instrument.h"
 #include "gonio/measure.h"
 #include "gonio/model_sample.h"
@@ -114,9 +117,11 @@ std::vector<fitters::DesignPoint> Geometries(const gonio::Schedule& schedule,
 
 // A noise-free measurement of `model` at `points` with their sigma: what PredictErrors weighs.
 Measurement Predicted(const Model& model, const std::vector<fitters::DesignPoint>& points,
-                      bool designed) {
+                      bool designed, const gonio::Instrument& instrument) {
   Measurement measurement;
   measurement.source = "predicted";
+  // Read through the instrument, as `brdf fit` reads the measurement `brdf measure` makes.
+  measurement.metadata[fitters::kInstrumentKey] = instrument.ToJson();
   for (const fitters::DesignPoint& point : points) {
     measurement.samples.push_back({point.wi, point.wo, model.Eval(point.wi, point.wo), false});
     measurement.sigma.push_back(point.sigma);
@@ -128,9 +133,11 @@ Measurement Predicted(const Model& model, const std::vector<fitters::DesignPoint
 // The predicted standard errors of a fit to a measurement at `points`.
 fitters::PredictedErrors PredictFit(const Model& model,
                                     const std::vector<fitters::DesignPoint>& points, bool designed,
+                                    const gonio::Instrument& instrument,
                                     const gonio::NoiseModel& noise) {
-  return fitters::PredictErrors(model, Predicted(model, points, designed),
-                                fitters::ExpectedNoiseAt(points, noise.CommonScaleVariance()));
+  return fitters::PredictErrors(
+      model, Predicted(model, points, designed, instrument),
+      fitters::ExpectedNoiseAt(points, noise.CommonScaleVariance(), noise.LightArmVariance()));
 }
 
 struct Comparison {
@@ -236,7 +243,9 @@ Command AddPlanCommand(CLI::App& parent) {
               instrument = gonio::ReadInstrument(options->instrument);
             }
             instrument.Validate();
-            const std::vector<std::string> warnings = fitters::DesignWarnings(model);
+            std::vector<std::string> warnings = fitters::DesignWarnings(model);
+            const std::string blur = fitters::ApertureBlurWarning(instrument, model);
+            if (!blur.empty()) warnings.push_back(blur);
             for (const std::string& warning : warnings) {
               std::cerr << "brdf plan: warning: " << warning << "\n";
             }
@@ -249,7 +258,8 @@ Command AddPlanCommand(CLI::App& parent) {
                 Geometries(candidate_schedule, instrument, noise, constraints.theta_max_deg,
                            static_cast<size_t>(options->budget));
             progress.Advance();
-            const fitters::DesignResult result = fitters::ChooseDesign(model, candidates, design);
+            const fitters::DesignResult result =
+                fitters::ChooseDesign(model, candidates, design, &instrument);
             progress.Advance();
             std::vector<fitters::DesignPoint> plan;
             for (size_t k : result.chosen) plan.push_back(candidates[k]);
@@ -277,16 +287,16 @@ Command AddPlanCommand(CLI::App& parent) {
                  "uniform:count=" + std::to_string(uniform.size()) +
                      ":theta_max=" + FormatNumber(theta_max),
                  uniform.size(),
-                 fitters::InformationLogDet(model, uniform),
+                 fitters::InformationLogDet(model, uniform, &instrument),
                  {}},
                 {"default",
                  "hemisphere",
                  standard.size(),
-                 fitters::InformationLogDet(model, standard),
+                 fitters::InformationLogDet(model, standard, &instrument),
                  {}}};
-            rows[0].errors = PredictFit(model, plan, true, noise);
-            rows[1].errors = PredictFit(model, uniform, false, noise);
-            rows[2].errors = PredictFit(model, standard, false, noise);
+            rows[0].errors = PredictFit(model, plan, true, instrument, noise);
+            rows[1].errors = PredictFit(model, uniform, false, instrument, noise);
+            rows[2].errors = PredictFit(model, standard, false, instrument, noise);
             progress.Advance();
 
             WriteFileAtomically(options->out, [&](std::ostream& out) {
