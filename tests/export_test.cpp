@@ -207,6 +207,30 @@ TEST(Export, BlinnPhongIsRefittedAsGgxAndMeasured) {
   EXPECT_LT(material.error.log_rmse, 0.1);
 }
 
+// The renderers hold our lambert and ggx terms (and beckmann in Mitsuba 3): a composition of
+// those is exported as it is, under its own name; any other term (the rough diffuse eon, a
+// retro lobe, a second lobe, beckmann outside Mitsuba 3) makes the material a ggx refit.
+TEST(Export, OnlyCompositionsOfHeldTermsAreExportedAsTheyAre) {
+  const auto source_of = [](const std::string& model, Target target) {
+    ExportRequest request;
+    request.fit = ParseModel(model);
+    request.samples = HemisphereGridSamples(10.0);
+    return ExportMaterial(request, target).source;
+  };
+  const MicrofacetSource beckmann =
+      source_of("beckmann:rho_d=0.3:f0=0.04:alpha=0.2", Target::kMitsuba3);
+  EXPECT_TRUE(beckmann.via.empty()) << beckmann.via;
+  EXPECT_EQ(beckmann.distribution, Distribution::kBeckmann);
+  for (const char* model : {"eon:rho_d=0.5:sigma=0.6", "lambert+retro:rho_d=0.3:rho_r=0.2:n_r=20",
+                            "lambert+ggx+ggx:rho_d=0.3:f0=0.04:alpha=0.3:f0_2=0.02:alpha_2=0.05",
+                            "beckmann:rho_d=0.3:f0=0.04:alpha=0.2"}) {
+    const MicrofacetSource source = source_of(model, Target::kGltf);
+    EXPECT_EQ(source.model, "ggx") << model;
+    EXPECT_EQ(source.distribution, Distribution::kGgx) << model;
+    EXPECT_FALSE(source.via.empty()) << model;
+  }
+}
+
 // A refit keeps each channel's colour in both terms: the diffuse reflectance and the lobe's f0
 // keep the fit's order and roughly its ratios (2 : 1 between red and green, 6 and 5 : 1 between
 // green and blue), whichever of the two ggx candidates (export.cpp) follows the fit more closely.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
 #include "core/enum_names.h"
 #include "core/errors.h"
@@ -11,6 +12,7 @@
 #include "core/text.h"
 #include "export/targets.h"
 #include "fitters/fit.h"
+#include "models/lambert.h"
 #include "models/model_string.h"
 #include "models/term.h"
 
@@ -58,20 +60,33 @@ double GgxLogRmse(const MicrofacetSource& source, const Model& fit,
 // The fit itself when the target holds its distribution; otherwise ggx, whichever of the general
 // refit and the lobe-matched map follows the fit's values on the mapping samples more closely.
 
+// The distribution of a renderer's microfacet lobe that holds our lobe exactly: ggx in every
+// target, beckmann in Mitsuba 3 (the only one that has it); none for any other lobe.
+std::optional<Distribution> HeldDistribution(const LobeInfo& lobe, Target target) {
+  if (lobe.term == models::GgxLobe::kName) return Distribution::kGgx;
+  if (lobe.term == models::BeckmannLobe::kName && target == Target::kMitsuba3) {
+    return Distribution::kBeckmann;
+  }
+  return std::nullopt;
+}
+
 MicrofacetSource SourceFor(const Model& fit, Target target,
                            const std::vector<fitters::FitSample>& samples,
                            const std::vector<Rgb>& fit_values, MicrofacetSource* refit_cache) {
   MicrofacetSource source;
-  const std::string& name = fit.name();
-  if (name == "lambert") {
-    source.model = "lambert";
+  const ModelInfo& info = fit.info();
+  const bool lambert = info.diffuse == models::Lambert::kName;
+  if (lambert && info.lobes.empty()) {
+    source.model = fit.name();
     source.rho_d = ParamRgb(fit, "rho_d");
     return source;
   }
-  const bool target_has_beckmann = target == Target::kMitsuba3;
-  if (name == "ggx" || (name == "beckmann" && target_has_beckmann)) {
-    source.model = name;
+  const std::optional<Distribution> held =
+      lambert && info.lobes.size() == 1 ? HeldDistribution(info.lobes[0], target) : std::nullopt;
+  if (held) {
+    source.model = fit.name();
     source.has_lobe = true;
+    source.distribution = *held;
     source.rho_d = ParamRgb(fit, "rho_d");
     source.f0 = ParamRgb(fit, "f0");
     source.alpha = fit.Param("alpha");
@@ -119,6 +134,7 @@ MicrofacetSource LobeMatchedGgx(const Model& fit, const std::vector<fitters::Fit
                                 const std::vector<Rgb>& fit_values) {
   MicrofacetSource best;
   best.model = "ggx";
+  best.distribution = Distribution::kGgx;
   best.has_lobe = true;
   best.rho_d = ParamRgb(fit, "rho_d");
   double best_error = std::numeric_limits<double>::infinity();
@@ -190,6 +206,7 @@ MicrofacetSource RefitAsGgx(const Model& fit, const std::vector<fitters::FitSamp
   }
   const fitters::FitResult refit = fitters::FitPreparedSamples(prepared, "ggx", options);
   source.model = "ggx";
+  source.distribution = Distribution::kGgx;
   source.has_lobe = true;
   source.rho_d = ParamRgb(refit.model, "rho_d");
   source.f0 = ParamRgb(refit.model, "f0");

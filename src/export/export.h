@@ -24,6 +24,7 @@
 
 #include "core/measurement.h"
 #include "core/vec.h"
+#include "export/renderer_terms.h"
 #include "fitters/fit_samples.h"
 #include "models/registry.h"
 
@@ -53,8 +54,9 @@ inline constexpr double kFallbackGridStepDeg = 5.0;
 
 // Our fitted model in microfacet terms: what a renderer's material is mapped from.
 struct MicrofacetSource {
-  std::string model;  // "lambert", "ggx" or "beckmann"
+  std::string model;  // what it is, for people: the fit's model name, or "ggx" for a refit
   bool has_lobe = false;
+  Distribution distribution = Distribution::kGgx;  // the lobe's, when has_lobe
   Rgb rho_d = Rgb::Zero();
   Rgb f0 = Rgb::Zero();
   double alpha = 0;

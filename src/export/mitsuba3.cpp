@@ -50,7 +50,7 @@ ExportedMaterial MapToMitsuba3(const MappingInput& input) {
     MapToExactDiffuse(source.rho_d, &material);
     body = DiffuseXml(source.rho_d, "    ", "brdfkit");
   } else {
-    const bool beckmann = source.model == "beckmann";
+    const bool beckmann = source.distribution == Distribution::kBeckmann;
     const std::string distribution = beckmann ? "beckmann" : "ggx";
     MicrofacetLobe lobe;
     lobe.distribution = beckmann ? Distribution::kBeckmann : Distribution::kGgx;

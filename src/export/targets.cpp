@@ -195,8 +195,7 @@ TermDifferences MeasureTermDifferences(
     const MappingInput& input, const MicrofacetLobe& renderer_lobe,
     const std::function<Rgb(double cos_theta_d)>& renderer_fresnel) {
   const MicrofacetSource& source = input.source;
-  const Distribution ours =
-      source.model == "beckmann" ? Distribution::kBeckmann : Distribution::kGgx;
+  const Distribution ours = source.distribution;
   TermDifferences differences;
   for (const fitters::FitSample& sample : input.samples) {
     const HalfVectorGeometry g = Geometry(sample.wi, sample.wo);

@@ -37,6 +37,7 @@ struct LobeInfo {
 struct ModelInfo {
   std::string name;           // as the command line writes it, e.g. "ggx"
   std::string terms;          // the composition, e.g. "lambert+ggx"
+  std::string diffuse;        // its diffuse term's name, e.g. "lambert"
   std::string formula;        // f(wi, wo) as in DESIGN §2
   std::string bound_formula;  // how the fitter's energy bound is formed, e.g. "rho_d + A(e) rho_s"
   bool auto_candidate = false;  // a rung `--model auto` climbs
@@ -107,6 +108,7 @@ ModelInfo MakeModelInfo(const std::string& name, bool auto_candidate) {
   ModelInfo info;
   info.name = name;
   info.terms = M::TermNames();
+  info.diffuse = M::DiffuseTerm::kName;
   info.formula = M::Formula();
   info.bound_formula = M::BoundFormula();
   info.auto_candidate = auto_candidate;
