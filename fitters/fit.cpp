@@ -38,8 +38,9 @@ Robust ParseRobust(const std::string& name) { return ParseEnum(kRobustNames, nam
 const char* RobustName(Robust robust) { return NameOf(kRobustNames, robust); }
 
 void FitOptions::Validate() const {
-  if (max_iterations < 1) throw UsageError("max_iterations must be at least 1");
-  if (samples_per_block < 1) throw UsageError("samples_per_block must be at least 1");
+  if (max_iterations < 1) throw UsageError("the iteration limit of a fit must be at least 1");
+  if (samples_per_block < 1)
+    throw UsageError("the samples per evaluation block must be at least 1");
   if (max_samples != 0 && max_samples < 100) {
     throw UsageError("--max-samples must be 0 (all) or at least 100");
   }

@@ -19,6 +19,7 @@
 #include "core/angles.h"
 #include "core/errors.h"
 #include "energy/albedo.h"
+#include "energy/verdict.h"
 #include "fitters/energy_bound.h"
 #include "fitters/fit.h"
 #include "fitters/objective.h"
@@ -145,7 +146,8 @@ void ExpectTermRecovery(const char* truth_text, uint64_t noise_seed = 3) {
     EXPECT_NEAR(exact.model.params()[p], truth.params()[p], 1e-4 * std::abs(truth.params()[p]))
         << "parameter " << p << ": " << exact.model.ToString();
   }
-  EXPECT_TRUE(exact.energy.conserving);
+  EXPECT_EQ(exact.energy.verdict.conservation, Conservation::kConserving)
+      << exact.energy.verdict.reason;
   const fitters::FitResult noisy =
       fitters::FitModel(TermReadings(truth, 0.01, noise_seed), truth.name(), options);
   EXPECT_TRUE(noisy.converged) << noisy.termination;

@@ -59,7 +59,8 @@ Command AddEnergyCommand(CLI::App& parent) {
   app->add_option("--seed", options->albedo.seed,
                   "Monte Carlo seed (results do not depend on the thread count)")
       ->capture_default_str();
-  app->add_flag("--json", options->json, "print JSON (DESIGN §7 fields) instead of the table");
+  app->add_flag("--json", options->json,
+                "print JSON (the curve, the verdict and its reason) instead of the table");
   app->add_option("--out", options->out,
                   "also write the curve as CSV (theta_deg, r, g, b, errors, coverage)");
   app->add_option("--plot", options->plot, "also draw albedo vs theta as a PNG");

@@ -67,7 +67,7 @@ std::string SparseLobeWarning(const Model& model, const AlbedoOptions& options) 
        << ") expects only " << std::setprecision(3) << worst_hits << " of " << options.samples
        << " cosine samples at theta = " << std::fixed << std::setprecision(1) << worst_theta
        << " deg; a lobe no sample hits is left out of both the albedo and its error estimate, "
-          "so the error bar can hide the miss (use --method quadrature or importance)";
+          "so the error bar can hide the miss (quadrature or importance sampling does not miss it)";
   return text.str();
 }
 
@@ -383,7 +383,7 @@ AlbedoEstimate MeasuredDirectionalAlbedo(const MeasuredBrdf& measured, double th
 
 AlbedoCurve ModelAlbedoCurve(const Model& model, const AlbedoOptions& options, Progress* progress) {
   AlbedoCurve curve =
-      ComputeCurve(model.ToString(), options, progress, [&](double theta_o, uint64_t stream) {
+      ComputeCurve(model.ToString(7), options, progress, [&](double theta_o, uint64_t stream) {
         return ModelDirectionalAlbedo(model, theta_o, options, stream);
       });
   FinishAlbedoCurve(&curve);

@@ -23,7 +23,7 @@ class AnalyticTable : public TabulatedBrdf, public CellMeasure {
  public:
   explicit AnalyticTable(Model model) : model_(std::move(model)) {}
   Rgb Eval(const Vec3& wi, const Vec3& wo) const override { return model_.Eval(wi, wo); }
-  std::string Describe() const override { return "the analytic model " + model_.ToString(); }
+  std::string Describe() const override { return "the analytic model " + model_.ToString(7); }
   std::string LookupName() const override { return "analytic " + model_.name(); }
   // A model has no cells: each evaluation stands for itself.
   double Measure(const Vec3&, const Vec3&) const override { return 1.0; }
@@ -47,7 +47,8 @@ Model ReadFitReportModel(const std::string& path) {
   const std::string text = ReadFileBytes(path, kMaxReportBytes);
   const nlohmann::json report = ParseJsonText(text, path, "a fit report");
   if (!report.is_object() || !report.contains("model") || !report["model"].is_string()) {
-    throw InputError(path, "expected a fit report with a \"model\" name (DESIGN §6)");
+    throw InputError(
+        path, "expected a fit report (the JSON `brdf fit --json` writes) with a \"model\" name");
   }
   const std::string name = report["model"].get<std::string>();
   const ModelInfo* info = nullptr;
