@@ -185,7 +185,7 @@ void CheckIdentifiability(FitResult* result) {
     if (LobeVanished(*result)) {
       result->warnings.push_back(
           "not identifiable: the lobe vanished (rho_s = 0 in every channel), so its "
-          "exponent is arbitrary; the data show no lobe (try --model lambert)");
+          "exponent is arbitrary; the data show no lobe (a lambert fit may be enough)");
       return;  // the exponent's box and error mean nothing without a lobe
     }
     // The box of the width parameter (the lobe's fit range, models/term.h): an exponent in
@@ -273,8 +273,7 @@ void CheckResidualWarnings(const PreparedSamples& prepared, FitResult* result) {
         std::to_string(check.residuals) + " values (" + Format("%.2g", 100 * fraction) +
         " %) lie beyond 5 robust standard deviations of the " + what +
         ", where Gaussian noise puts 6e-5 %" +
-        (result->robust == Robust::kNone ? "; a robust loss (--robust cauchy) bounds their pull"
-                                         : ""));
+        (result->robust == Robust::kNone ? "; a robust loss (cauchy) bounds their pull" : ""));
   }
   if (!clustered && check.has_sigma && check.reduced_chi_square > kMaxReducedChiSquare) {
     result->warnings.push_back(

@@ -42,9 +42,9 @@ void FitOptions::Validate() const {
   if (samples_per_block < 1)
     throw UsageError("the samples per evaluation block must be at least 1");
   if (max_samples != 0 && max_samples < 100) {
-    throw UsageError("--max-samples must be 0 (all) or at least 100");
+    throw UsageError("the subsample size (max samples) must be 0 (all) or at least 100");
   }
-  if (threads < 0) throw UsageError("--threads must not be negative");
+  if (threads < 0) throw UsageError("the thread count must not be negative");
   if (start_exponents.empty()) throw UsageError("at least one start exponent is needed");
   for (double exponent : start_exponents) {
     if (!(exponent >= models::kMinFitExponent && exponent <= models::kMaxFitExponent)) {

@@ -139,13 +139,15 @@ AlbedoMethod ParseAlbedoMethod(std::string_view name) {
 
 void AlbedoOptions::Validate() const {
   if (theta_steps < 1 || theta_steps > 100000) {
-    throw UsageError("--theta-steps must be in [1, 100000], got " + std::to_string(theta_steps));
+    throw UsageError("the number of incidence angles (theta steps) must lie in [1, 100000], got " +
+                     std::to_string(theta_steps));
   }
   if (!(theta_max_deg >= 0.0 && theta_max_deg < 90.0)) {
     throw UsageError("the largest theta must be in [0, 90) degrees");
   }
   if (method != AlbedoMethod::kQuadrature && samples < 2) {
-    throw UsageError("--samples must be at least 2, got " + std::to_string(samples));
+    throw UsageError("the Monte Carlo sample count must be at least 2, got " +
+                     std::to_string(samples));
   }
   quadrature.Validate();
   if (measured_max_intervals < 1) throw UsageError("measured data need at least one interval");
@@ -377,8 +379,8 @@ AlbedoEstimate MeasuredDirectionalAlbedo(const MeasuredBrdf& measured, double th
       break;
   }
   throw UsageError(
-      "importance sampling draws from a model's lobe; for measured data use --method "
-      "quadrature or mc");
+      "importance sampling draws from a model's lobe; for measured data use the "
+      "quadrature or mc method");
 }
 
 AlbedoCurve ModelAlbedoCurve(const Model& model, const AlbedoOptions& options, Progress* progress) {

@@ -23,18 +23,18 @@ namespace brdf {
 
 void ToneOptions::Validate() const {
   auto positive = [](double value) { return value > 0.0 && std::isfinite(value); };
-  if (exposure && !positive(*exposure)) throw UsageError("--exposure must be > 0");
-  if (!positive(key) || key >= 1.0) throw UsageError("--key must lie in (0, 1)");
+  if (exposure && !positive(*exposure)) throw UsageError("exposure must be > 0");
+  if (!positive(key) || key >= 1.0) throw UsageError("the key must lie in (0, 1)");
   if (!positive(delta)) throw UsageError("delta must be > 0");
-  if (!std::isfinite(white) || white < 0.0) throw UsageError("--white must be 'auto' or > 0");
+  if (!std::isfinite(white) || white < 0.0) throw UsageError("white must be 'auto' or > 0");
   if (!(bloom_threshold >= 0.0) || !std::isfinite(bloom_threshold)) {
-    throw UsageError("--bloom-threshold must be >= 0");
+    throw UsageError("the bloom threshold must be >= 0");
   }
   if (!(bloom_strength >= 0.0) || !std::isfinite(bloom_strength)) {
-    throw UsageError("--bloom-strength must be >= 0");
+    throw UsageError("the bloom strength must be >= 0");
   }
   if (!positive(bloom_sigma) || bloom_sigma > 1000.0) {
-    throw UsageError("--bloom-sigma must lie in (0, 1000] px");
+    throw UsageError("the bloom sigma must lie in (0, 1000] px");
   }
 }
 

@@ -23,12 +23,12 @@ ToneOptions ToneArguments::Resolve() const {
   ToneOptions options;
   options.tone_operator = ParseToneOperator(tone_operator);
   if (ev_given && exposure != "auto") {
-    throw UsageError("--exposure and --ev both set the exposure; give one");
+    throw UsageError("exposure and ev both set the exposure; give one");
   }
   if (ev_given) options.exposure = std::exp2(ev);
-  if (exposure != "auto") options.exposure = ParsePositive("--exposure", exposure);
+  if (exposure != "auto") options.exposure = ParsePositive("exposure", exposure);
   options.key = key;
-  options.white = white == "auto" ? 0.0 : ParsePositive("--white", white);
+  options.white = white == "auto" ? 0.0 : ParsePositive("white", white);
   options.bloom = ParseBlurKind(bloom);
   options.bloom_threshold = bloom_threshold;
   options.bloom_strength = bloom_strength;

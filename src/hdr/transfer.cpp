@@ -32,7 +32,7 @@ TransferCurve TransferCurve::Parse(const std::string& text) {
   char* end = nullptr;
   const double gamma = std::strtod(text.c_str(), &end);
   if (end == text.c_str() || *end != '\0' || !(gamma > 0.0) || !std::isfinite(gamma)) {
-    throw UsageError("--gamma: expected 'srgb' or a positive number, got '" + text + "'");
+    throw UsageError("gamma: expected 'srgb' or a positive number, got '" + text + "'");
   }
   curve.kind = Kind::kGamma;
   curve.gamma = gamma;

@@ -83,7 +83,7 @@ Environment Environment::Load(const std::string& spec, int64_t* non_finite) {
         SplitFields(std::string_view(spec).substr(8), ",", /*collapse=*/false);
     Rgb radiance;
     if (fields.size() != 1 && fields.size() != 3) {
-      throw UsageError("--env '" + spec + "': expected uniform:L or uniform:R,G,B");
+      throw UsageError("environment '" + spec + "': expected uniform:L or uniform:R,G,B");
     }
     for (int c = 0; c < 3; ++c) {
       const std::string_view field = fields[fields.size() == 1 ? 0 : c];
@@ -91,7 +91,7 @@ Environment Environment::Load(const std::string& spec, int64_t* non_finite) {
           std::from_chars(field.data(), field.data() + field.size(), radiance[c]);
       if (field.empty() || error != std::errc() || end != field.data() + field.size() ||
           !std::isfinite(radiance[c]) || radiance[c] < 0.0) {
-        throw UsageError("--env '" + spec + "': expected a radiance >= 0, found '" +
+        throw UsageError("environment '" + spec + "': expected a radiance >= 0, found '" +
                          std::string(field) + "'");
       }
     }
