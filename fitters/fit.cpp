@@ -70,6 +70,9 @@ std::string FitResult::Summary() const {
 FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string& model_name,
                              const FitOptions& options, SubsampleOptimum* optimum) {
   options.Validate();
+  if (options.loss == Loss::kAuto) {
+    throw ComputeError("a fit of prepared samples needs a resolved loss (ResolveLoss)");
+  }
   // Ceres reports rank deficiency through glog warnings; the fit report says it in words.
   static const bool quiet_ceres = [] {
     FLAGS_minloglevel = google::GLOG_ERROR;
@@ -106,8 +109,10 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
   options.Validate();
   FindModel(model_name);  // an unknown name is a usage error before any work
   const auto start = std::chrono::steady_clock::now();
-  PreparedSamples prepared = PrepareSamples(measurement);
-  FitResult result = FitPreparedSamples(prepared, model_name, options);
+  FitOptions resolved = options;
+  resolved.loss = ResolveLoss(options.loss, measurement);
+  PreparedSamples prepared = PrepareSamples(measurement, resolved.loss);
+  FitResult result = FitPreparedSamples(prepared, model_name, resolved);
   FinishFit(prepared, &result);
   Release(&prepared);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

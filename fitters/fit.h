@@ -35,8 +35,9 @@ struct FitOptions {
   // over the range real materials span (~1 to ~1e5).
   std::vector<double> start_exponents = {2, 8, 32, 128, 512, 2048, 8192, 32768};
   // Microfacet models: alphas tried, each with f0 from the data's peak and with f0 = 0.04 (a
-  // dielectric coat); log-spaced from a near-mirror to a matte-like roughness.
-  std::vector<double> start_alphas = {0.02, 0.05, 0.12, 0.3, 0.7};
+  // dielectric coat); log-spaced from a near-mirror (alpha 2e-3: a polished coat's or a metal's
+  // highlight, which a start of 0.02 misses, settling on a broad lobe) to a matte-like roughness.
+  std::vector<double> start_alphas = {0.002, 0.006, 0.02, 0.05, 0.12, 0.3, 0.7};
   int start_iterations = 30;  // iterations per start (at most max_iterations)
 
   // Throws UsageError naming the bad field.

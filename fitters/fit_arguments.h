@@ -13,7 +13,10 @@ namespace brdf::fitters {
 
 struct FitArguments {
   std::string model = "auto";
-  std::string loss = "l2";
+  // By the data (fit_samples.h: ResolveLoss): `image` for tables that can be rendered (it wins
+  // the MERL benchmark in image space, docs/real-data.md), `l2` for readings that state their
+  // noise, `sqrt` otherwise.
+  std::string loss = "auto";
   std::string robust = "none";
   size_t max_samples = FitOptions{}.max_samples;
   uint64_t seed = 1;
@@ -23,6 +26,10 @@ struct FitArguments {
   bool reciprocal = false;  // RGL-EPFL files: the reciprocal reading (ReadOptions::reciprocal)
 
   bool Automatic() const { return model == "auto"; }
+  // Whether the fit renders a measurement that has an evaluator (Measurement::tabulated): the
+  // image loss fits the pixels of its rendered spheres, and `auto` chooses by its image error
+  // (select.h).
+  bool UsesEvaluator() const { return Automatic() || loss == "image" || loss == "auto"; }
   // Checks the model name (a usage error names the known ones) and the numbers.
   FitOptions ToFitOptions(int threads) const;
   brdf::ReadOptions ToReadOptions() const;

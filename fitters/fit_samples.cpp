@@ -16,6 +16,7 @@
 #include "core/colour.h"
 #include "core/enum_names.h"
 #include "core/errors.h"
+#include "fitters/image_error.h"
 #include "io/merl.h"
 
 namespace brdf::fitters {
@@ -57,9 +58,8 @@ void NeighbourAreas(const std::vector<const Vec3*>& directions, std::vector<doub
 }  // namespace
 
 constexpr EnumName<Loss> kLossNames[] = {
-    {Loss::kL2, "l2"},
-    {Loss::kLog, "log"},
-    {Loss::kCosineL2, "cosine-l2"},
+    {Loss::kL2, "l2"},     {Loss::kLog, "log"},     {Loss::kCosineL2, "cosine-l2"},
+    {Loss::kSqrt, "sqrt"}, {Loss::kImage, "image"}, {Loss::kAuto, "auto"},
 };
 
 Loss ParseLoss(const std::string& name) { return ParseEnum(kLossNames, name, "loss"); }
@@ -71,7 +71,28 @@ void Release(PreparedSamples* prepared) {
   prepared->sigma = std::vector<Rgb>();
 }
 
-PreparedSamples PrepareSamples(const Measurement& measurement) {
+Loss ResolveLoss(Loss loss, const Measurement& measurement) {
+  const bool renderable = measurement.tabulated != nullptr;
+  if (loss == Loss::kAuto) {
+    if (renderable) return Loss::kImage;
+    return measurement.has_sigma() ? Loss::kL2 : Loss::kSqrt;
+  }
+  if (loss == Loss::kImage && !renderable) {
+    throw InputError(measurement.source,
+                     "the image loss fits rendered spheres of the measurement, and these data "
+                     "have no evaluator to render them (only table formats such as MERL and "
+                     "RGL-EPFL have); use the sqrt loss, its counterpart on the samples");
+  }
+  return loss;
+}
+
+PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss) {
+  if (loss == Loss::kImage) {
+    PreparedSamples prepared = PrepareSamples(ImageLossSamples(measurement));
+    prepared.weighting = ImageLossWeighting();
+    prepared.designed = false;  // equal weights, but the pixels tile the spheres
+    return prepared;
+  }
   PreparedSamples prepared;
   const auto recorded = measurement.metadata.find(kInstrumentKey);
   if (recorded != measurement.metadata.end()) {

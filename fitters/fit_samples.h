@@ -17,9 +17,24 @@ enum class Loss {
   kL2,        // f_model - f_data
   kLog,       // log(1 + f_model cos theta_i) - log(1 + f_data cos theta_i)  (Löw et al. 2012)
   kCosineL2,  // (f_model - f_data) cos theta_i  (Ngan, Durand & Matusik 2005)
+  kSqrt,      // sqrt(f_model cos theta_i + e) - sqrt(f_data cos theta_i + e)  (residual.h)
+  kImage,     // sqrt's, on the pixels of rendered spheres (data with an evaluator only)
+  kAuto,      // one of the above, by what the data are: ResolveLoss
 };
 Loss ParseLoss(const std::string& name);
 const char* LossName(Loss loss);
+
+// The loss a fit of `measurement` uses for `loss` (DESIGN §6; the benchmark behind it is in
+// docs/real-data.md). `auto` is:
+//  * `image` for data that can be rendered (an evaluator, Measurement::tabulated: MERL and
+//    RGL-EPFL tables): the loss whose fits render closest to the measurement's own render;
+//  * `l2` for readings that state their noise (a sigma column, as `brdf measure` writes): the
+//    chi-square, whose optimum is the maximum-likelihood one, weighted by the noise the model
+//    predicts (fit_composition.h);
+//  * `sqrt` otherwise: a sample counts in proportion to its radiance, as in a render.
+// Any other loss is itself, except that `image` on data without an evaluator is an InputError
+// naming the file.
+Loss ResolveLoss(Loss loss, const Measurement& measurement);
 
 // 104 bytes: a MERL table has a million of them. What follows from these (cos theta_i, the
 // loss's target) is computed where it is used rather than stored.
@@ -32,16 +47,25 @@ struct FitSample {
   double cos_theta_i() const { return wi.z(); }
 };
 
+// The floor e of the sqrt loss, sr^-1: keeps its derivative finite where f cos theta_i is zero,
+// far below the diffuse floor of the darkest real material (rho_d 0.01 gives f 0.003).
+inline constexpr double kSqrtLossFloor = 1e-4;
+
 // The data as the loss compares them: f (l2), log(1 + f cos theta_i) (log; values below
 // -1/cos theta_i would have no logarithm, and out-of-gamut RGB is only slightly negative, so
-// clamping there changes nothing real) or f cos theta_i (cosine-l2).
+// clamping there changes nothing real), f cos theta_i (cosine-l2) or sqrt(f cos theta_i + e)
+// (sqrt; negative values clamped to zero likewise).
 inline Rgb LossTarget(Loss loss, const Rgb& value, double cos_theta_i) {
   switch (loss) {
+    case Loss::kSqrt:
+    case Loss::kImage:
+      return ((value * cos_theta_i).max(0.0) + kSqrtLossFloor).sqrt();
     case Loss::kLog:
       return (1.0 + (value * cos_theta_i).max(-0.999)).log();
     case Loss::kCosineL2:
       return value * cos_theta_i;
     case Loss::kL2:
+    case Loss::kAuto:  // resolved before any sample is compared (ResolveLoss)
       break;
   }
   return value;
@@ -86,7 +110,11 @@ void Release(PreparedSamples* prepared);
 // columns divide the residuals (the fit then weighs by sigmas predicted from the model:
 // fit_composition.h). The samples are the same for every loss: each loss transforms
 // the data where it compares them (LossTarget).
-PreparedSamples PrepareSamples(const Measurement& measurement);
+//
+// Under the `image` loss (a resolved loss: ResolveLoss), the samples are instead the
+// measurement's evaluator at the pixels of rendered spheres (image_error.h: ImageLossSamples),
+// each standing for itself (equal weights).
+PreparedSamples PrepareSamples(const Measurement& measurement, Loss loss = Loss::kL2);
 
 // Unbiased weights (DESIGN §6). A reading's stated sigma is often estimated from the reading
 // itself (photon counts, a Monte Carlo estimate's spread): a reading that came out low states

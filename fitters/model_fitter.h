@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "fitters/fit.h"
@@ -69,6 +70,19 @@ class ModelFitter {
       }
       starts = std::move(combined);
     });
+    // Two lobes of one term are interchangeable: a start and its mirror image (the lobes'
+    // shapes swapped) lead to the same optimum, so only starts with the first lobe's shape
+    // below the second's are tried (lambert+ggx+ggx: 84 starts instead of 196).
+    if constexpr (ModelType::kLobes == 2) {
+      if constexpr (std::is_same_v<typename ModelType::template Term<1>,
+                                   typename ModelType::template Term<2>>) {
+        starts.erase(std::remove_if(starts.begin(), starts.end(),
+                                    [](const FitStart& start) {
+                                      return !(start.lobes[0].shape < start.lobes[1].shape);
+                                    }),
+                     starts.end());
+      }
+    }
     if (kLobed && designed) {
       const size_t count = starts.size();
       for (size_t k = 0; k < count; ++k) {
@@ -84,10 +98,15 @@ class ModelFitter {
   std::vector<double> InitialGuess(const std::vector<FitSample>& samples,
                                    const FitStart& start) const {
     models::PeakSample peak;
-    // The brightest sample (by its largest channel): where the lobe is seen.
+    // The brightest sample in radiance, f cos theta_i (by its largest channel): where the lobe
+    // is seen. By f alone, a table's brightest sample is often at grazing incidence, where
+    // Fresnel lifts a broad tail above the highlight.
     size_t peak_index = 0;
+    const auto radiance = [&](size_t k) {
+      return samples[k].value.maxCoeff() * samples[k].cos_theta_i();
+    };
     for (size_t k = 1; k < samples.size(); ++k) {
-      if (samples[k].value.maxCoeff() > samples[peak_index].value.maxCoeff()) peak_index = k;
+      if (radiance(k) > radiance(peak_index)) peak_index = k;
     }
     peak.wi = samples[peak_index].wi;
     peak.wo = samples[peak_index].wo;

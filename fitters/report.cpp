@@ -97,8 +97,12 @@ nlohmann::json FitReportJson(const FitResult& fit, const std::string& source,
       candidates.push_back({{"model", candidate.model},
                             {"bic", candidate.bic},
                             {"rmse", candidate.rmse},
+                            {"loss_rms", candidate.loss_rms},
                             {"free_variables", candidate.free_variables},
                             {"converged", candidate.converged}});
+      if (std::isfinite(candidate.image_error)) {
+        candidates.back()["image_error"] = candidate.image_error;
+      }
     }
     json["selection"] = {{"criterion", selection->criterion},
                          {"chosen", selection->chosen},
@@ -117,8 +121,12 @@ void PrintFitReport(std::ostream& out, const FitResult& fit, const std::string& 
   if (selection != nullptr) {
     out << "selection   " << selection->reason << "\n";
     for (const CandidateScore& candidate : selection->candidates) {
-      out << Format("            %-18s BIC %-14.8g rmse %.4g%s\n", candidate.model.c_str(),
-                    candidate.bic, candidate.rmse, candidate.converged ? "" : "  (not converged)");
+      const std::string image = std::isfinite(candidate.image_error)
+                                    ? Format("  image error %.4g", candidate.image_error)
+                                    : std::string();
+      out << Format("            %-18s BIC %-14.8g rmse %-10.4g loss rms %.4g%s%s\n",
+                    candidate.model.c_str(), candidate.bic, candidate.rmse, candidate.loss_rms,
+                    image.c_str(), candidate.converged ? "" : "  (not converged)");
     }
   }
   out << "parameter   value (r g b)                           ± standard error\n";

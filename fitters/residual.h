@@ -11,17 +11,30 @@
 namespace brdf::fitters {
 
 // The model's value f as the loss compares it with LossTarget (fit_samples.h): f, log(1 + f cos
-// theta_i) or f cos theta_i; and its derivative d/df, for the analytic Jacobians.
+// theta_i), f cos theta_i or sqrt(f cos theta_i + e); and its derivative d/df, for the analytic
+// Jacobians.
+//
+// Why sqrt: a render shows the radiance L = f cos theta_i E, and an image error is an L1 sum of
+// |L_fit - L_data| (fitters/image_error.h). At a relative error eps, a sample of radiance L adds
+// eps L to that sum; to a least-squares loss it adds eps^2 L^2 on f cos theta_i (the highlight
+// outweighs everything), about eps^2 for L >> 1 under log (the highlight counts no more than the
+// dim tails) and (sqrt(L + eps L) - sqrt(L))^2 ~ eps^2 L / 4 under sqrt: in proportion to L, as
+// in the image. (The Hellinger distance, or the variance-stabilising transform of counts.)
 template <typename T>
 T LossPrediction(Loss loss, const T& f, double cos_theta_i) {
   using std::log;
+  using std::sqrt;
   if (loss == Loss::kLog) return log(T(1) + f * cos_theta_i);
   if (loss == Loss::kCosineL2) return f * cos_theta_i;
+  if (loss == Loss::kSqrt || loss == Loss::kImage) return sqrt(f * cos_theta_i + kSqrtLossFloor);
   return f;
 }
 inline double LossPredictionDerivative(Loss loss, double f, double cos_theta_i) {
   if (loss == Loss::kLog) return cos_theta_i / (1.0 + f * cos_theta_i);
   if (loss == Loss::kCosineL2) return cos_theta_i;
+  if (loss == Loss::kSqrt || loss == Loss::kImage) {
+    return 0.5 * cos_theta_i / std::sqrt(f * cos_theta_i + kSqrtLossFloor);
+  }
   return 1.0;
 }
 

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <optional>
 
 #include "core/format.h"
 #include "fitters/fit_samples.h"
+#include "fitters/image_error.h"
 
 namespace brdf::fitters {
 
@@ -24,11 +26,99 @@ const std::vector<std::string>& AutoCandidates() {
   return candidates;
 }
 
-FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options,
+namespace {
+
+// The candidate whose sphere is closest to the measurement's (select.h), its image errors filled
+// in: the simplest within kImageErrorTolerance of the lowest.
+size_t ChooseByImage(const TabulatedBrdf& measured, const std::vector<FitResult>& fits,
+                     std::vector<CandidateScore>* candidates) {
+  const SphereRadiance reference =
+      RenderLitSphere([&](const Vec3& wi, const Vec3& wo) { return measured.Eval(wi, wo); });
+  double lowest = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < fits.size(); ++k) {
+    const Model& model = fits[k].model;
+    const double error = RelativeL1(reference, RenderLitSphere([&](const Vec3& wi, const Vec3& wo) {
+                                      return model.Eval(wi, wo);
+                                    }));
+    (*candidates)[k].image_error = error;
+    if (std::isfinite(error)) lowest = std::min(lowest, error);
+  }
+  for (size_t k = 0; k < fits.size(); ++k) {
+    if ((*candidates)[k].image_error <= lowest * (1.0 + kImageErrorTolerance)) return k;
+  }
+  return 0;
+}
+
+// Why BIC prefers the candidate `index` (of the candidates, simplest first), with the loss's rms
+// residual, which BIC weighs: a lower BIC at no fewer variables is a lower rms residual.
+std::string BicReason(const ModelInfo& info, size_t index, const Selection& selection) {
+  const CandidateScore& winner = selection.candidates[index];
+  const CandidateScore& lambert = selection.candidates.front();
+  if (!info.has_lobe()) {
+    return Format(
+        "lambert has the lowest BIC (%.6g): no lobe lowers the loss's rms residual (%.4g) enough "
+        "to pay for its extra variables",
+        winner.bic, winner.loss_rms);
+  }
+  // The best earlier rung whose lobe brings something else (a power-cosine lobe, for a
+  // microfacet one): the sentence compares with it.
+  const CandidateScore* other = nullptr;
+  for (size_t k = 0; k < index; ++k) {
+    const ModelInfo& earlier = FindModel(selection.candidates[k].model);
+    if (earlier.has_lobe() && earlier.lobes.front().adds != info.lobes.front().adds &&
+        (other == nullptr || selection.candidates[k].bic < other->bic)) {
+      other = &selection.candidates[k];
+    }
+  }
+  const char* adds = info.lobes.front().adds.c_str();
+  if (other != nullptr) {
+    return Format(
+        "%s has the lowest BIC (%.6g; best earlier lobe, %s, %.6g; lambert %.6g): %s the loss's "
+        "rms residual from %.4g (%s) to %.4g",
+        winner.model.c_str(), winner.bic, other->model.c_str(), other->bic, lambert.bic, adds,
+        other->loss_rms, other->model.c_str(), winner.loss_rms);
+  }
+  return Format(
+      "%s has the lowest BIC (%.6g, lambert %.6g): %s the loss's rms residual from %.4g to %.4g",
+      winner.model.c_str(), winner.bic, lambert.bic, adds, lambert.loss_rms, winner.loss_rms);
+}
+
+// Why the image chose `index`, against BIC's choice and the runner-up.
+std::string ImageReason(size_t index, size_t bic_index, const Selection& selection) {
+  const CandidateScore& chosen = selection.candidates[index];
+  std::string reason = Format(
+      "%s renders closest to the measurement: image error %.4g (relative L1 of the lit sphere "
+      "under lights at 20 and 60 deg",
+      chosen.model.c_str(), chosen.image_error);
+  const CandidateScore* next = nullptr;
+  for (const CandidateScore& candidate : selection.candidates) {
+    if (&candidate != &chosen && (next == nullptr || candidate.image_error < next->image_error)) {
+      next = &candidate;
+    }
+  }
+  if (index != bic_index) {
+    const CandidateScore& by_bic = selection.candidates[bic_index];
+    reason += Format("; %s, BIC's choice, %.4g", by_bic.model.c_str(), by_bic.image_error);
+  }
+  if (next != nullptr && next->model != selection.candidates[bic_index].model) {
+    reason += Format("; next, %s, %.4g", next->model.c_str(), next->image_error);
+  }
+  if (next != nullptr && next->image_error < chosen.image_error) {
+    reason +=
+        Format("; within %.0f %% of the lowest, the simplest is kept", 100 * kImageErrorTolerance);
+  }
+  return reason + ")";
+}
+
+}  // namespace
+
+FitResult SelectAndFit(const Measurement& measurement, const FitOptions& given_options,
                        Selection* selection, std::vector<FitResult>* all_fits) {
-  options.Validate();
+  given_options.Validate();
   const auto start = std::chrono::steady_clock::now();
-  PreparedSamples prepared = PrepareSamples(measurement);
+  FitOptions options = given_options;
+  options.loss = ResolveLoss(given_options.loss, measurement);
+  PreparedSamples prepared = PrepareSamples(measurement, options.loss);
   const size_t sample_count = prepared.samples.size();
   // A large table: the candidates compete on the fit's own stratified subsample (BIC on a
   // subsample is still BIC, and every candidate sees the same samples), and only the winner is
@@ -71,8 +161,10 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
   size_t best = 0;
   for (size_t k = 0; k < names.size(); ++k) {
     FitResult& fit = *candidate_fits[k];
+    const double n = 3.0 * static_cast<double>(fit.samples);
     selection->candidates.push_back(
-        {names[k], fit.bic, fit.metrics.rmse, fit.free_variables, fit.converged});
+        {names[k], fit.bic, fit.metrics.rmse, std::sqrt(2.0 * fit.final_cost / std::max(n, 1.0)),
+         std::numeric_limits<double>::quiet_NaN(), fit.free_variables, fit.converged});
     // A clearly lower BIC wins; ties (to rounding) keep the earlier, simpler candidate. This
     // matters: blinn-phong and blinn-phong-exact span the same family of lobes (they differ
     // by a constant factor that rho_s absorbs), so they reach the same BIC.
@@ -80,6 +172,11 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
     if (fits.size() > 1 && fits.back().bic < fits[best].bic - 1e-9 * std::abs(fits[best].bic)) {
       best = fits.size() - 1;
     }
+  }
+  const size_t bic_best = best;
+  if (measurement.tabulated) {
+    selection->criterion = "image";
+    best = ChooseByImage(*measurement.tabulated, fits, &selection->candidates);
   }
   if (on_subsample) {
     subsample.samples = std::vector<FitSample>();
@@ -93,41 +190,13 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& options
   Release(&prepared);
   const FitResult& chosen = fits[best];
   selection->chosen = chosen.model.name();
-  const CandidateScore& winner = selection->candidates[best];  // its score in the contest
-  const CandidateScore* lambert = &selection->candidates.front();
-  // What the chosen model's first lobe brings, and the best earlier rung whose lobe brings
-  // something else (a power-cosine lobe, for a microfacet one): the sentence compares with it.
-  const ModelInfo& chosen_info = chosen.model.info();
-  const CandidateScore* other = nullptr;
-  if (chosen_info.has_lobe()) {
-    for (size_t k = 0; k < best; ++k) {
-      const ModelInfo& info = FindModel(selection->candidates[k].model);
-      if (info.has_lobe() && info.lobes.front().adds != chosen_info.lobes.front().adds &&
-          (other == nullptr || selection->candidates[k].bic < other->bic)) {
-        other = &selection->candidates[k];
-      }
-    }
-  }
-  if (!chosen_info.has_lobe()) {
+  selection->reason = BicReason(fits[bic_best].model.info(), bic_best, *selection);
+  if (selection->criterion == "image") {
     selection->reason =
-        "lambert has the lowest BIC: no lobe lowers the error enough to pay for its extra "
-        "variables";
-  } else if (other != nullptr) {
-    selection->reason = Format(
-        "%s has the lowest BIC (%.6g; best earlier lobe, %s, %.6g; lambert %.6g): "
-        "%s the rmse from %.4g (%s) to %.4g sr^-1",
-        selection->chosen.c_str(), winner.bic, other->model.c_str(), other->bic, lambert->bic,
-        chosen_info.lobes.front().adds.c_str(), other->rmse, other->model.c_str(), winner.rmse);
-  } else {
-    selection->reason = Format(
-        "%s has the lowest BIC (%.6g, lambert %.6g): %s the rmse from "
-        "%.4g to %.4g sr^-1",
-        selection->chosen.c_str(), winner.bic, lambert->bic, chosen_info.lobes.front().adds.c_str(),
-        lambert->rmse, winner.rmse);
+        ImageReason(best, bic_best, *selection) + "; by BIC alone, " + selection->reason;
   }
   if (on_subsample) {
-    selection->reason += " (BIC and rmse of every candidate on the same " +
-                         std::to_string(contest_count) +
+    selection->reason += " (every candidate on the same " + std::to_string(contest_count) +
                          "-sample stratified subsample; the chosen model then fitted to all " +
                          std::to_string(sample_count) + ")";
   }

@@ -354,7 +354,7 @@ TEST(ExportCli, WarnsWhenTheRendererLosesTheFitAndOnlyThen) {
   for (const char* model : {"blinn-phong", "ggx"}) {
     const std::string fit = dir.File(std::string(model) + ".json");
     const testing::CommandResult fitted =
-        RunBrdf("fit '" + data + "' --model " + model + " --quiet --out " + fit);
+        RunBrdf("fit '" + data + "' --model " + model + " --loss l2 --quiet --out " + fit);
     ASSERT_EQ(fitted.exit_status, 0) << fitted.err;
     const testing::CommandResult exported =
         RunBrdf("export " + fit + " --to gltf --json --out " + dir.File("m.gltf"));

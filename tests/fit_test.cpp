@@ -192,7 +192,7 @@ TEST(Fit, CauchySurvivesBlindSpots) {
 
 TEST(Fit, EveryLossRecoversNoiseFreeParameters) {
   const Model truth = ParseModel(kTruths[2]);
-  for (fitters::Loss loss : {fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+  for (fitters::Loss loss : {fitters::Loss::kLog, fitters::Loss::kCosineL2, fitters::Loss::kSqrt}) {
     FitOptions options;
     options.loss = loss;
     const FitResult fit = FitModel(Synthesize(truth, {}), truth.name(), options);
@@ -405,7 +405,7 @@ void ExpectObjectiveJacobianMatches(const char* truth_text) {
   noise.relative = 0.05;
   const Measurement measurement = Synthesize(ParseModel(truth_text), noise);
   for (const fitters::Loss loss :
-       {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+       {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2, fitters::Loss::kSqrt}) {
     const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement);
     for (const bool grey : {false, true}) {
       SCOPED_TRACE(std::string(M::kName) + " loss " + fitters::LossName(loss) +
@@ -478,7 +478,7 @@ template <typename M>
 void ExpectNormalSumsMatchJacobianRows(const char* truth_text) {
   const fitters::PreparedSamples prepared = NoisyPreparedSamples(truth_text);
   for (const fitters::Loss loss :
-       {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+       {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2, fitters::Loss::kSqrt}) {
     for (const bool grey : {false, true}) {
       SCOPED_TRACE(std::string(M::kName) + " loss " + fitters::LossName(loss) +
                    (grey ? " grey" : " rgb"));
@@ -694,7 +694,8 @@ TEST(FitRealData, AutoClimbsToAMicrofacetRungOnGlossyPaintAndZemax) {
         fitters::SelectAndFit(ReadMeasurement(testing::DataPath(file)), FitOptions{}, &selection);
     EXPECT_EQ(fit.model.info().lobes.front().shape_scale, models::ShapeScale::kRoughness)
         << selection.reason;
-    EXPECT_NE(selection.reason.find("Fresnel and masking lower the rmse"), std::string::npos)
+    EXPECT_NE(selection.reason.find("Fresnel and masking lower the loss's rms residual"),
+              std::string::npos)
         << selection.reason;
     EXPECT_EQ(fit.energy.verdict.conservation, Conservation::kConserving) << file;
   }

@@ -77,7 +77,8 @@ TEST(EnumNames, EveryConvertedEnumRoundTrips) {
   EXPECT_STREQ(TensorDtypeName(TensorDtype::kU8), "u8");
   EXPECT_STREQ(TensorDtypeName(TensorDtype::kF64), "f64");
   EXPECT_THROW(exporters::ParseTarget("mitsuba"), UsageError);
-  for (fitters::Loss loss : {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+  for (fitters::Loss loss : {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2,
+                             fitters::Loss::kSqrt, fitters::Loss::kImage, fitters::Loss::kAuto}) {
     EXPECT_EQ(fitters::ParseLoss(fitters::LossName(loss)), loss);
   }
   for (fitters::Robust robust :

@@ -109,8 +109,8 @@ TEST(InstrumentFit, ApertureAveragedJacobianMatchesAutodiff) {
     ASSERT_GT(nodes.averaged, samples.size() / 2) << text;
     VisitModelType(model.name(), [&](auto model_type) {
       using M = decltype(model_type);
-      for (const fitters::Loss loss :
-           {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+      for (const fitters::Loss loss : {fitters::Loss::kL2, fitters::Loss::kLog,
+                                       fitters::Loss::kCosineL2, fitters::Loss::kSqrt}) {
         SCOPED_TRACE(std::string(text) + " loss " + fitters::LossName(loss));
         const fitters::FitObjective<M> objective(samples, loss, false,
                                                  fitters::FitObjective<M>::kDefaultBatch, &nodes);

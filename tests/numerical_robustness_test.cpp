@@ -72,8 +72,8 @@ void ExpectFitsOnHostileDataStayFinite(bool tabulated) {
     bool model_tabulated = false;
     M::ForEachLobe([&](auto lobe, auto) { model_tabulated |= decltype(lobe)::kTabulatedBound; });
     if (model_tabulated != tabulated) return;
-    for (const fitters::Loss loss :
-         {fitters::Loss::kL2, fitters::Loss::kLog, fitters::Loss::kCosineL2}) {
+    for (const fitters::Loss loss : {fitters::Loss::kL2, fitters::Loss::kLog,
+                                     fitters::Loss::kCosineL2, fitters::Loss::kSqrt}) {
       expect_finite(M::kName, loss, fitters::Robust::kNone);
     }
     expect_finite(M::kName, fitters::Loss::kL2, fitters::Robust::kCauchy);

@@ -13,16 +13,21 @@ std::string ModelNames() {
 
 Measurement ReadForFit(const std::string& path, const FitArguments& arguments) {
   Measurement measurement = ReadMeasurement(path, arguments.ToReadOptions());
-  measurement.tabulated.reset();
+  if (!arguments.UsesEvaluator()) measurement.tabulated.reset();
   return measurement;
 }
 
 void AddFitOptions(CLI::App* app, FitArguments* arguments) {
   app->add_option("--model", arguments->model,
-                  ModelNames() + ", or auto (the simplest model the data support, by BIC)")
+                  ModelNames() +
+                      ", or auto (the simplest model the data support, by BIC; for tables that "
+                      "can be rendered, by the image error of their rendered spheres)")
       ->capture_default_str();
   app->add_option("--loss", arguments->loss,
-                  "l2 (on f), log (log(1 + f cos theta_i)) or cosine-l2 (Ngan et al. 2005)")
+                  "auto (image for tables that can be rendered, l2 for readings that state their "
+                  "noise, sqrt otherwise), image (sqrt on the pixels of rendered spheres), sqrt "
+                  "(sqrt(f cos theta_i)), l2 (on f), log (log(1 + f cos theta_i)) or cosine-l2 "
+                  "(Ngan et al. 2005)")
       ->capture_default_str();
   app->add_option("--robust", arguments->robust, "none, huber or cauchy (for outliers)")
       ->capture_default_str();

@@ -124,6 +124,7 @@ the fitted model's f.)doc")
       });
 
   const fitters::FitOptions defaults;
+  const fitters::FitArguments default_arguments;
   module.def(
       "fit",
       [](const py::object& measurement_or_path, const std::string& model, const std::string& loss,
@@ -162,10 +163,10 @@ the fitted model's f.)doc")
         }
         return result;
       },
-      py::arg("measurement"), py::arg("model") = "auto", py::arg("loss") = "l2",
-      py::arg("robust") = "none", py::arg("max_samples") = defaults.max_samples,
-      py::arg("seed") = defaults.seed, py::arg("threads") = defaults.threads,
-      py::arg("max_iterations") = defaults.max_iterations,
+      py::arg("measurement"), py::arg("model") = default_arguments.model,
+      py::arg("loss") = default_arguments.loss, py::arg("robust") = "none",
+      py::arg("max_samples") = defaults.max_samples, py::arg("seed") = defaults.seed,
+      py::arg("threads") = defaults.threads, py::arg("max_iterations") = defaults.max_iterations,
       py::arg("grey_specular") = defaults.grey_specular, py::arg("illuminant") = "D65",
       py::arg("reciprocal") = false,
       R"doc(
@@ -174,9 +175,12 @@ inputs give the same report, bit for bit (time_s aside).
 
 measurement:    a Measurement, or the path of a measurement file (read as brdfkit.read does).
 model:          a model name (brdfkit.models()), or "auto" (default): every model is fitted and
-                the simplest the data support is kept, by BIC; report["selection"] says why.
-loss:           "l2" (on f, default), "log" (log(1 + f cos theta_i)) or "cosine-l2" (Ngan et
-                al. 2005).
+                the simplest the data support is kept, by BIC (for tables that can be
+                rendered, by the image error of their spheres); report["selection"] says why.
+loss:           "auto" (default: "image" for tables that can be rendered, "l2" for readings
+                that state their noise, "sqrt" otherwise), "image" (sqrt on the pixels of
+                rendered spheres), "sqrt" (sqrt(f cos theta_i)), "l2" (on f), "log"
+                (log(1 + f cos theta_i)) or "cosine-l2" (Ngan et al. 2005).
 robust:         "none" (default), "huber" or "cauchy" (for outliers).
 max_samples:    stratified subsample for the multi-start, then a polish on all samples (0:
                 all samples throughout; default 20000).
