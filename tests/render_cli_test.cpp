@@ -121,7 +121,9 @@ TEST(RenderCli, VersusSheetShowsTheRelativeError) {
       "--size 80 --out '" +
       dir.File("sheet.png") + "'");
   ASSERT_EQ(result.exit_status, 0) << result.err;
-  EXPECT_NE(result.out.find("mean 1, 99th percentile 1, max 1"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("median 1, 90th percentile 1, 99th percentile 1, max 1"),
+            std::string::npos)
+      << result.out;
   const cv::Mat sheet = cv::imread(dir.File("sheet.png"), cv::IMREAD_COLOR);
   ASSERT_FALSE(sheet.empty());
   EXPECT_GT(sheet.cols, 3 * 80);  // A, B, error map, colour bar

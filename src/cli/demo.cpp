@@ -308,8 +308,9 @@ void RenderSheets(const DemoOptions& options, const Environment& environment,
     WritePng(options.out_dir + "/" + path, sheet.sheet);
     const std::string peaks = Format("; peak luminance %.4g cd/m^2 measured, %.4g fitted",
                                      PeakNits(a.radiance), PeakNits(b.radiance));
-    dataset->images.push_back(
-        {"measured | fitted | error, " + lighting.caption + ": " + sheet.Summary() + peaks, path});
+    dataset->images.push_back({"measured | fitted | colour error map, " + lighting.caption + ": " +
+                                   sheet.Summary() + peaks,
+                               path});
   }
   dataset->seconds += SecondsSince(start);
 }

@@ -36,6 +36,11 @@ class TabulatedBrdf {
   virtual std::string Describe() const = 0;
   // Short name of the evaluation, e.g. "MERL table lookup", for a preview's summary line.
   virtual std::string LookupName() const = 0;
+  // The evaluator a preview draws with, where it differs from this one (DESIGN §8): no holes (a
+  // lookup on a cell without a value takes the nearest cell that has one, so that a sphere
+  // shows no black spots) and values interpolated in the table's own coordinates. Null: this
+  // one serves. Energy, fits and conversions keep Eval, whose NaN counts a hole as a hole.
+  virtual std::shared_ptr<const TabulatedBrdf> PreviewEvaluator() const { return nullptr; }
 };
 
 // The measure dwi dwo (sr^2) of the table cell that a dense table's sample at (wi, wo) stands

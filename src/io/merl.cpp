@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/text.h"
+#include "io/merl_preview.h"
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
               "the MERL reader copies little-endian bytes directly");
@@ -39,6 +40,9 @@ class MerlEvaluator : public TabulatedBrdf {
            " cells missing count as zero";
   }
   std::string LookupName() const override { return "MERL table lookup"; }
+  std::shared_ptr<const TabulatedBrdf> PreviewEvaluator() const override {
+    return MerlPreviewTabulated(*table_);  // io/merl_preview.h
+  }
 
  private:
   std::shared_ptr<const MerlTable> table_;

@@ -13,8 +13,26 @@
 namespace brdf {
 namespace {
 
-// Share of B's brightest luminance below which the error is taken relative to that floor.
-constexpr double kRelativeErrorFloor = 0.01;
+// The reference level of a sheet: this percentile of B's luminance over its sphere. A highlight
+// covering less than a tenth of the sphere cannot set it (B's maximum, the former reference,
+// made a chrome table's sheet read 0.002 everywhere beside its peak).
+constexpr double kReferencePercentile = 0.9;
+// Share of the reference level below which a channel's error is taken relative to that floor
+// (a channel near black, e.g. the red of a blue paint, would otherwise turn noise into
+// thousands of per cent).
+constexpr double kRelativeErrorFloor = 0.05;
+// Share of the reference level above which a pixel of A or B counts as lit: the statistics run
+// over the lit sphere, not over the black back of a sphere under a directional light.
+constexpr double kLitShare = 0.01;
+
+// The value at `fraction` (0..1) of the sorted values (nearest rank); 0 for none.
+double Percentile(std::vector<double> values, double fraction) {
+  if (values.empty()) return 0.0;
+  const size_t rank = static_cast<size_t>(fraction * static_cast<double>(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(rank),
+                   values.end());
+  return values[rank];
+}
 
 // Two previews side by side in one image, so that one pipeline run maps both identically.
 Image SideBySide(const Image& a, const Image& b) {
@@ -72,9 +90,64 @@ void Label(cv::Mat& sheet, const std::string& text, int x, int width) {
 
 std::string ComparisonSheet::Summary() const {
   return Format(
-      "relative luminance error |A-B|/max(B, 1%% of max B): mean %.3g, 99th percentile %.3g, "
-      "max %.3g (colour bar 0..%g)",
-      mean_relative_error, p99_relative_error, max_relative_error, colour_bar_top);
+      "colour error max over R,G,B of |A-B|/max(B, 5%% of B's 90th-percentile luminance), over "
+      "the lit sphere (%lld px, one exposure for A and B): median %.3g, 90th percentile %.3g, "
+      "99th percentile %.3g, max %.3g (colour bar 0..%g)",
+      static_cast<long long>(lit_pixels), median_relative_error, p90_relative_error,
+      p99_relative_error, max_relative_error, colour_bar_top);
+}
+
+double ColourRelativeError(const Rgb& a, const Rgb& b, double floor) {
+  double error = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double denominator = std::max(b[c], floor);
+    const double difference = std::abs(a[c] - b[c]);
+    error = std::max(error,
+                     denominator > 0.0 ? difference / denominator : (difference > 0.0 ? 1.0 : 0.0));
+  }
+  return error;
+}
+
+ComparisonSheet CompareRadiance(const Image& radiance_a, const Image& radiance_b,
+                                cv::Mat* error_map) {
+  const int size_x = radiance_a.width, size_y = radiance_a.height;
+  ComparisonSheet result;
+  std::vector<double> luminance_b;
+  for (int y = 0; y < size_y; ++y) {
+    for (int x = 0; x < size_x; ++x) {
+      const float* b = radiance_b.pixel(x, y);
+      if (b[3] != 0.0f) luminance_b.push_back(PixelLuminance(b));
+    }
+  }
+  result.reference_luminance = Percentile(std::move(luminance_b), kReferencePercentile);
+  const double floor = kRelativeErrorFloor * result.reference_luminance;
+  const double lit = kLitShare * result.reference_luminance;
+  std::vector<double> errors;
+  errors.reserve(static_cast<size_t>(size_x) * size_y);
+  double sum = 0.0;
+  for (int y = 0; y < size_y; ++y) {
+    for (int x = 0; x < size_x; ++x) {
+      const float* a = radiance_a.pixel(x, y);
+      const float* b = radiance_b.pixel(x, y);
+      if (a[3] == 0.0f || b[3] == 0.0f) continue;
+      if (!(std::max(PixelLuminance(a), PixelLuminance(b)) > lit)) continue;
+      const double relative =
+          ColourRelativeError(Rgb(a[0], a[1], a[2]), Rgb(b[0], b[1], b[2]), floor);
+      if (error_map != nullptr) error_map->at<float>(y, x) = static_cast<float>(relative);
+      result.max_relative_error = std::max(result.max_relative_error, relative);
+      sum += relative;
+      errors.push_back(relative);
+    }
+  }
+  result.lit_pixels = static_cast<int64_t>(errors.size());
+  result.mean_relative_error = errors.empty() ? 0.0 : sum / static_cast<double>(errors.size());
+  result.median_relative_error = Percentile(errors, 0.5);
+  result.p90_relative_error = Percentile(errors, 0.9);
+  // The colour bar spans the 99th percentile: a few Monte Carlo outliers (a sharp lobe found
+  // by one sample in thousands) would otherwise push every other pixel to the bottom colour.
+  result.p99_relative_error = Percentile(std::move(errors), 0.99);
+  result.colour_bar_top = RoundUp125(result.p99_relative_error);
+  return result;
 }
 
 ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& display_b,
@@ -85,52 +158,10 @@ ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& displ
       radiance_b.width != size_x || radiance_a.height != size_y || radiance_b.height != size_y) {
     throw ComputeError("comparison sheet: the two previews differ in size");
   }
-  ComparisonSheet result;
-  // Relative error where both spheres have a pixel. The denominator is floored at 1% of B's
-  // brightest pixel: where B is nearly black (a fit with rho_d = 0 away from its highlight) a
-  // bare |A-B|/B reaches 1e13 and the colour bar shows nothing else.
-  double brightest_b = 0.0;
-  for (int y = 0; y < size_y; ++y) {
-    for (int x = 0; x < size_x; ++x) {
-      const float* b = radiance_b.pixel(x, y);
-      if (b[3] != 0.0f) brightest_b = std::max<double>(brightest_b, PixelLuminance(b));
-    }
-  }
-  const double floor_b = kRelativeErrorFloor * brightest_b;
-  cv::Mat error(size_y, size_x, CV_32F, cv::Scalar(0));
-  cv::Mat on_sphere(size_y, size_x, CV_8U, cv::Scalar(0));
-  double sum = 0.0;
-  int64_t count = 0;
-  std::vector<double> errors;
-  errors.reserve(static_cast<size_t>(size_x) * size_y);
-  for (int y = 0; y < size_y; ++y) {
-    for (int x = 0; x < size_x; ++x) {
-      const float* a = radiance_a.pixel(x, y);
-      const float* b = radiance_b.pixel(x, y);
-      if (a[3] == 0.0f || b[3] == 0.0f) continue;
-      const double luminance_a = PixelLuminance(a), luminance_b = PixelLuminance(b);
-      const double difference = std::abs(luminance_a - luminance_b);
-      const double denominator = std::max(luminance_b, floor_b);
-      const double relative =
-          denominator > 0.0 ? difference / denominator : (difference > 0.0 ? 1.0 : 0.0);
-      error.at<float>(y, x) = static_cast<float>(relative);
-      on_sphere.at<uint8_t>(y, x) = 255;
-      result.max_relative_error = std::max(result.max_relative_error, relative);
-      sum += relative;
-      errors.push_back(relative);
-      ++count;
-    }
-  }
-  result.mean_relative_error = count > 0 ? sum / count : 0.0;
-  // The colour bar spans the 99th percentile: a few Monte Carlo outliers (a sharp lobe found
-  // by one sample in thousands) would otherwise push every other pixel to the bottom colour.
-  if (!errors.empty()) {
-    const size_t rank = static_cast<size_t>(0.99 * static_cast<double>(errors.size() - 1));
-    std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(rank),
-                     errors.end());
-    result.p99_relative_error = errors[rank];
-  }
-  result.colour_bar_top = RoundUp125(result.p99_relative_error);
+  // The map: the error on the lit sphere, black (the bottom colour's background) elsewhere.
+  cv::Mat error(size_y, size_x, CV_32F, cv::Scalar(-1));
+  ComparisonSheet result = CompareRadiance(radiance_a, radiance_b, &error);
+  const cv::Mat on_sphere = error >= 0.0f;
 
   cv::Mat error8, error_colour;
   error.convertTo(error8, CV_8U, 255.0 / result.colour_bar_top);
@@ -143,7 +174,7 @@ ComparisonSheet MakeComparisonSheet(const Image8& display_a, const Image8& displ
   error_colour.copyTo(sheet(cv::Rect(2 * size_x, kLabelHeight, size_x, size_y)));
   Label(sheet, "A: " + label_a, 0, size_x);
   Label(sheet, "B: " + label_b, size_x, size_x);
-  Label(sheet, "|A-B|/B (luminance)", 2 * size_x, size_x);
+  Label(sheet, "max RGB |A-B|/B", 2 * size_x, size_x);
 
   // Colour bar: top = colour_bar_top, bottom = 0, labelled at both ends and the middle.
   const int bar_x = 3 * size_x + 8, bar_top = kLabelHeight + 10, bar_height = size_y - 20;

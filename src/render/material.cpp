@@ -12,6 +12,7 @@
 #include "hdr/simd.h"
 #include "io/formats.h"
 #include "models/model_source.h"
+#include "render/table_sampler.h"
 
 namespace brdf {
 namespace {
@@ -122,8 +123,9 @@ class ModelMaterial : public Material {
   FloatModelBatchEval eval_float_batch_ = nullptr;
 };
 
-// Dense tabulated data (MERL, RGL-EPFL) through the reader's evaluator (Measurement::tabulated,
-// wrapped by energy/measured.h); NaN where a MERL cell is missing.
+// Dense tabulated data (MERL, RGL-EPFL) through the reader's preview evaluator, else its
+// evaluator (Measurement::tabulated, wrapped by energy/measured.h); importance-sampled by a
+// TableSampler built from the same values.
 class MeasuredTableMaterial : public Material {
  public:
   MeasuredTableMaterial(MeasuredBrdf measured, std::string lookup_name)
@@ -133,6 +135,10 @@ class MeasuredTableMaterial : public Material {
     return measured_.brdf(wi, wo).value;
   }
   std::string Describe() const override { return measured_.source + " (" + lookup_name_ + ")"; }
+  std::unique_ptr<DirectionSampler> MakeSampler() const override {
+    return std::make_unique<TableSampler>(
+        [this](const Vec3& wi, const Vec3& wo) { return Eval(wi, wo); });
+  }
 
  private:
   MeasuredBrdf measured_;
@@ -401,8 +407,11 @@ std::unique_ptr<Material> ModelMaterialOf(Model model) {
 
 std::unique_ptr<Material> MeasurementMaterialOf(const Measurement& measurement) {
   if (measurement.tabulated != nullptr) {
-    const std::string lookup_name = measurement.tabulated->LookupName();
-    return std::make_unique<MeasuredTableMaterial>(MeasuredBrdfOf(measurement), lookup_name);
+    // The preview's own evaluator where the reader has one (no holes; see material.h).
+    std::shared_ptr<const TabulatedBrdf> table = measurement.tabulated->PreviewEvaluator();
+    if (table == nullptr) table = measurement.tabulated;
+    return std::make_unique<MeasuredTableMaterial>(TabulatedMeasuredBrdf(table, measurement.source),
+                                                   table->LookupName());
   }
   return std::make_unique<TabulatedMaterial>(measurement);
 }

@@ -2,9 +2,11 @@
 // LoadModel) or a measurement file through interpolation (DESIGN §8).
 //
 // Measured data:
-//   * Dense tables go through the reader's evaluator (Measurement::tabulated): MERL cell by
-//     cell (MerlTable::Lookup: the half/difference cell containing (wi, wo), piecewise
-//     constant; missing cells render black), RGL-EPFL through the inverse VNDF warp.
+//   * Dense tables go through the reader's evaluator for previews (TabulatedBrdf::
+//     PreviewEvaluator, else Measurement::tabulated): MERL trilinear in its own grid with
+//     missing cells filled from the nearest valid one (io/merl_preview.h), RGL-EPFL through the
+//     inverse VNDF warp. Under an environment they are importance-sampled by a sampler built
+//     from those values (render/table_sampler.h): they have no lobe formula.
 //   * Scattered measurements (Cornell, Zemax, native CSV) use the same inverse-distance
 //     interpolant as `brdf energy` (energy/measured.h), tabulated once at the cell centres of
 //     the isotropic half/difference space (theta_h, theta_d in [0, pi/2], phi_d folded into
@@ -23,6 +25,20 @@
 #include "models/registry.h"
 
 namespace brdf {
+
+// Directions wi drawn for a view wo, and their density, a batch at a time (local frame, float,
+// for the renderer's hot loop): the importance sampler of data without a lobe formula.
+class DirectionSampler {
+ public:
+  virtual ~DirectionSampler() = default;
+  // wi from uniforms (u0, u1) in [0, 1)^2, one per k < count; a wi below the horizon carries
+  // no weight.
+  virtual void SampleBatch(const Vec3f& wo, const float* u0, const float* u1, int count, float* x,
+                           float* y, float* z) const = 0;
+  // The density of each wi in solid angle (sr^-1), exact for what SampleBatch draws.
+  virtual void PdfBatch(const Vec3f& wo, const float* x, const float* y, const float* z, int count,
+                        float* pdf) const = 0;
+};
 
 class Material {
  public:
@@ -49,6 +65,10 @@ class Material {
   // bright pixel in thousands). Models give their own lobe; scattered measurements one read
   // off their table; MERL tables and lobe-free models none.
   virtual std::optional<LobeCoordinates> SpecularLobe() const { return std::nullopt; }
+  // A sampler built from the material's own values, for dense tables that have no lobe
+  // formula: the renderer asks for it once per render under an environment and draws from it
+  // instead of a lobe. None for models and scattered data (they have SpecularLobe).
+  virtual std::unique_ptr<DirectionSampler> MakeSampler() const { return nullptr; }
 };
 
 // A model string or FIT.json (LoadModel), else a measurement file. Throws UsageError /

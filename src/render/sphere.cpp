@@ -62,13 +62,18 @@ struct DirectionBatch {
 // The environment term of one pixel (sphere.h) in single precision. Per sample s, in this
 // order: a light direction from the environment's distribution (64 random bits and a float),
 // a cosine-distributed one (two floats), and, when the lobe technique is on, one from the lobe
-// (two floats); combined with the power heuristic, whose weight p_t^2 / sum p^2 divided by the
-// technique's own pdf p_t is p_t / sum p^2.
+// (two floats) or, for dense tables, one from the material's own sampler (Material::MakeSampler,
+// the same two floats); combined with the power heuristic, whose weight p_t^2 / sum p^2 divided
+// by the technique's own pdf p_t is p_t / sum p^2.
 class EnvironmentEstimator {
  public:
   EnvironmentEstimator(const Material& material, const Environment& environment,
-                       std::optional<LobeTechnique> lobe, int spp)
-      : material_(material), environment_(environment), lobe_(lobe), spp_(spp) {}
+                       std::optional<LobeTechnique> lobe, const DirectionSampler* sampler, int spp)
+      : material_(material),
+        environment_(environment),
+        lobe_(lobe),
+        sampler_(lobe ? nullptr : sampler),
+        spp_(spp) {}
 
   struct Estimate {
     Rgb radiance = Rgb::Zero();
@@ -95,6 +100,8 @@ class EnvironmentEstimator {
     const Vec3f wo = to_local.col(2);  // the viewer, +z in the world
     std::optional<LobeSampler> lobe;
     if (lobe_) lobe.emplace(*lobe_, wo);
+    // The third technique: the lobe's, or the material's own sampler.
+    const bool third = lobe || sampler_ != nullptr;
     Rng random(pixel, seed);
 
     // Zeroed: a batch's unused lanes must hold finite numbers.
@@ -124,13 +131,16 @@ class EnvironmentEstimator {
         environment_.Prefetch(environment_.SlotOf(light_bits[k]));
         cosine_u0[k] = random.UniformFloat();
         cosine_u1[k] = random.UniformFloat();
-        if (lobe) {
+        if (third) {
           lobe_u0[k] = random.UniformFloat();
           lobe_u1[k] = random.UniformFloat();
         }
       }
       if (lobe) {
         lobe->SampleBatch(lobe_u0, lobe_u1, kBatch, lobe_local.x, lobe_local.y, lobe_local.z);
+      } else if (sampler_ != nullptr) {
+        sampler_->SampleBatch(wo, lobe_u0, lobe_u1, kBatch, lobe_local.x, lobe_local.y,
+                              lobe_local.z);
       }
       // SampleCosineHemisphere (core/sampling.h) in float: the polar map.
       for (int k = 0; k < kBatch; ++k) {
@@ -143,13 +153,13 @@ class EnvironmentEstimator {
       }
       Transform(to_local.transpose(), cosine_local, &cosine_world);
       Locate(cosine_world, cosine_pixel, cosine_sin_theta);
-      if (lobe) {
+      if (third) {
         Transform(to_local.transpose(), lobe_local, &lobe_world);
         Locate(lobe_world, lobe_pixel, lobe_sin_theta);
       }
       for (int k = 0; k < count; ++k) {
         environment_.Prefetch(cosine_pixel[k]);
-        if (lobe) environment_.Prefetch(lobe_pixel[k]);
+        if (third) environment_.Prefetch(lobe_pixel[k]);
       }
       for (int k = 0; k < count; ++k) {
         light_pixel[k] = environment_.DrawFloat(environment_.SlotOf(light_bits[k]), light_bits[k],
@@ -170,6 +180,12 @@ class EnvironmentEstimator {
         lobe->MisPdfBatch(light_local.x, light_local.y, light_local.z, kBatch, light_lobe_pdf);
         lobe->MisPdfBatch(cosine_local.x, cosine_local.y, cosine_local.z, kBatch, cosine_lobe_pdf);
         lobe->MisPdfBatch(lobe_local.x, lobe_local.y, lobe_local.z, kBatch, lobe_lobe_pdf);
+      } else if (sampler_ != nullptr) {
+        material_.EvalFloatBatch(lobe_local.x, lobe_local.y, lobe_local.z, wo, count, lobe_f);
+        sampler_->PdfBatch(wo, light_local.x, light_local.y, light_local.z, count, light_lobe_pdf);
+        sampler_->PdfBatch(wo, cosine_local.x, cosine_local.y, cosine_local.z, count,
+                           cosine_lobe_pdf);
+        sampler_->PdfBatch(wo, lobe_local.x, lobe_local.y, lobe_local.z, count, lobe_lobe_pdf);
       }
 
       for (int k = 0; k < count; ++k) {
@@ -204,6 +220,16 @@ class EnvironmentEstimator {
             const float pdf_light = Environment::PdfFloat(texel, lobe_sin_theta[k]);
             estimate += Shade(lobe_f[k], wi, texel, pdf, weighted,
                               {pdf_light, wi.z() * kInvPiF, weighted}, missing);
+          }
+        } else if (sampler_ != nullptr) {
+          // The sampler's density is exact everywhere: it weighs and divides alike.
+          const Vec3f wi(lobe_local.x[k], lobe_local.y[k], lobe_local.z[k]);
+          const float pdf = wi.z() > 0.0f ? lobe_lobe_pdf[k] : 0.0f;
+          if (pdf > 0.0f) {
+            const Environment::Texel& texel = environment_.texel(lobe_pixel[k]);
+            const float pdf_light = Environment::PdfFloat(texel, lobe_sin_theta[k]);
+            estimate +=
+                Shade(lobe_f[k], wi, texel, pdf, pdf, {pdf_light, wi.z() * kInvPiF, pdf}, missing);
           }
         }
         const Rgb value = estimate.cast<double>();
@@ -257,6 +283,7 @@ class EnvironmentEstimator {
   const Material& material_;
   const Environment& environment_;
   std::optional<LobeTechnique> lobe_;
+  const DirectionSampler* sampler_;  // null, or the material's own (when it has no lobe)
   int spp_;
   bool avx2_ = HdrAvx2Enabled();
 };
@@ -299,11 +326,14 @@ RenderResult RenderSphere(const Material& material, const std::vector<Directiona
   result.luminance_std_error.assign(int64_t{size} * size, 0.0f);
   std::atomic<int64_t> sphere_pixels{0}, missing{0};
   const Vec3 wo_world(0.0, 0.0, 1.0);
+  // Dense tables bring a sampler built from their values (needed only under an environment).
+  const std::unique_ptr<DirectionSampler> sampler =
+      environment == nullptr ? nullptr : material.MakeSampler();
   const std::optional<EnvironmentEstimator> estimator =
-      environment == nullptr
-          ? std::nullopt
-          : std::optional<EnvironmentEstimator>(std::in_place, material, *environment,
-                                                ChooseLobeTechnique(material), options.spp);
+      environment == nullptr ? std::nullopt
+                             : std::optional<EnvironmentEstimator>(
+                                   std::in_place, material, *environment,
+                                   ChooseLobeTechnique(material), sampler.get(), options.spp);
 
   tbb::parallel_for(0, size, [&](int y) {
     int64_t row_pixels = 0, row_missing = 0;
