@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/simd.h"
 #include "hdr/blur.h"
-#include "hdr/simd.h"
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 #include <immintrin.h>
 #endif
 
@@ -151,10 +151,10 @@ class ResolvedTaps {
     return even + odd;
   }
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
   // Sum(base) and Sum(base + one pixel) in the two halves of one vector: each half does
   // Sum's arithmetic, so the bits are the same.
-  BRDF_HDR_AVX2 __m256 SumTwo(int64_t base) const {
+  BRDF_AVX2 __m256 SumTwo(int64_t base) const {
     __m256 even = _mm256_setzero_ps(), odd = _mm256_setzero_ps();
     int k = 0;
     for (; k + 1 < N; k += 2) {
@@ -174,7 +174,7 @@ class ResolvedTaps {
   // bits): one broadcast of each weight and one look-up of each tap's row serve M vectors,
   // which a loop of SumTwo calls spent as many loads on as on the pixels.
   template <int M>
-  BRDF_HDR_AVX2 void SumTwoMany(int64_t base, __m256 sums[M]) const {
+  BRDF_AVX2 void SumTwoMany(int64_t base, __m256 sums[M]) const {
     __m256 even[M], odd[M];
     for (int j = 0; j < M; ++j) even[j] = odd[j] = _mm256_setzero_ps();
     int k = 0;
@@ -210,7 +210,7 @@ class ResolvedTaps {
   }
   // Sum(base) when Paired(): the low half of a vector gathers the even taps' sum, the high
   // half the odd taps', in Sum's order.
-  BRDF_HDR_AVX2 __m128 SumPaired(int64_t base) const {
+  BRDF_AVX2 __m128 SumPaired(int64_t base) const {
     __m256 sum = _mm256_setzero_ps();
     for (int k = 0; k < N; k += 2) {
       const __m256 weights = _mm256_setr_m128(_mm_set1_ps(weight_[k]), _mm_set1_ps(weight_[k + 1]));
@@ -232,9 +232,9 @@ class ResolvedTaps {
 constexpr int kDownTaps = 16;
 constexpr int kUpTaps = 13;
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 // The inside pixels [x, end) of a step down with paired taps; returns `end`.
-BRDF_HDR_AVX2 int DownInsideAvx2(const ResolvedTaps<kDownTaps>& taps, int x, int end, float* out) {
+BRDF_AVX2 int DownInsideAvx2(const ResolvedTaps<kDownTaps>& taps, int x, int end, float* out) {
   for (; x < end; ++x) {
     _mm_storeu_ps(out + int64_t{x} * kC, taps.SumPaired(int64_t{2 * x} * kC));
   }
@@ -244,8 +244,8 @@ BRDF_HDR_AVX2 int DownInsideAvx2(const ResolvedTaps<kDownTaps>& taps, int x, int
 // The inside pixels of a doubling step from the even pixel x, four at a time (pixels x and
 // x + 2 of the even phase in one vector, x + 1 and x + 3 of the odd one); returns the first
 // pixel not written.
-BRDF_HDR_AVX2 int UpInsideAvx2(const ResolvedTaps<kUpTaps>& even, const ResolvedTaps<kUpTaps>& odd,
-                               int x, int end, float* out) {
+BRDF_AVX2 int UpInsideAvx2(const ResolvedTaps<kUpTaps>& even, const ResolvedTaps<kUpTaps>& odd,
+                           int x, int end, float* out) {
   constexpr int kVectors = 4;  // sixteen pixels a step, then four
   for (; x + 4 * kVectors - 1 < end; x += 4 * kVectors) {
     const int64_t base = int64_t{x / 2} * kC;
@@ -327,8 +327,8 @@ void DualFilterDownRow(const float* const rows[4], int source_width, int source_
   const ResolvedTaps<kDownTaps> resolved(rows, taps, -1);
   int x = std::max(begin, inside_begin);
   const int stop = std::max(x, std::min(end, inside_end));
-#if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, stop, out);
+#if BRDF_HAS_AVX2_PATHS
+  if (Avx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, stop, out);
 #endif
   for (; x < stop; ++x) {
     StorePixel(resolved.Sum(int64_t{2 * x} * kC), out + int64_t{x} * kC);
@@ -357,8 +357,8 @@ void DualFilterUpRow(const Image& source, int width, int y, float* out) {
   }
   const ResolvedTaps<kUpTaps> resolved_even(rows, even, -2), resolved_odd(rows, odd, -2);
   int x = inside_begin;  // even: inside_begin is 4 or width
-#if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled()) x = UpInsideAvx2(resolved_even, resolved_odd, x, inside_end, out);
+#if BRDF_HAS_AVX2_PATHS
+  if (Avx2Enabled()) x = UpInsideAvx2(resolved_even, resolved_odd, x, inside_end, out);
 #endif
   for (; x + 1 < inside_end; x += 2) {
     const int64_t base = int64_t{x / 2} * kC;

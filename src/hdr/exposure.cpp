@@ -12,9 +12,9 @@
 
 #include "core/deterministic_reduce.h"
 #include "core/errors.h"
-#include "hdr/simd.h"
+#include "core/simd.h"
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 #include <immintrin.h>
 #endif
 
@@ -90,10 +90,10 @@ inline void AddFour(const Float4& luminance, const Float4& alpha, float delta, L
   sums->black -= counted & ~lit;
 }
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 // Four RGBA pixels in each 128-bit half of `quad` (p[k] pixel k of the half) as planes:
 // channel[c] holds channel c of pixels 0..3 (low half) and 4..7 (high half).
-BRDF_HDR_AVX2 inline void TransposeQuads(const __m256 quad[4], __m256 channel[4]) {
+BRDF_AVX2 inline void TransposeQuads(const __m256 quad[4], __m256 channel[4]) {
   const __m256 t0 = _mm256_unpacklo_ps(quad[0], quad[1]);  // r0 r1 g0 g1
   const __m256 t1 = _mm256_unpackhi_ps(quad[0], quad[1]);  // b0 b1 a0 a1
   const __m256 t2 = _mm256_unpacklo_ps(quad[2], quad[3]);  // r2 r3 g2 g3
@@ -105,7 +105,7 @@ BRDF_HDR_AVX2 inline void TransposeQuads(const __m256 quad[4], __m256 channel[4]
 }
 
 // Log4 on eight lanes: the same operations, so the same bits.
-BRDF_HDR_AVX2 inline __m256 Log8(__m256 x) {
+BRDF_AVX2 inline __m256 Log8(__m256 x) {
   const __m256i bits = _mm256_castps_si256(x);
   __m256i exponent =
       _mm256_sub_epi32(_mm256_and_si256(_mm256_srli_epi32(bits, 23), _mm256_set1_epi32(0xff)),
@@ -130,7 +130,7 @@ BRDF_HDR_AVX2 inline __m256 Log8(__m256 x) {
 
 // Raises target[c] to the largest lane of peak[c] (RaisePeaks' comparison) and resets the
 // lanes to -infinity.
-BRDF_HDR_AVX2 inline void FlushPeaks(__m256 peak[3], float* target) {
+BRDF_AVX2 inline void FlushPeaks(__m256 peak[3], float* target) {
   for (int c = 0; c < 3; ++c) {
     alignas(32) float lanes[8];
     _mm256_store_ps(lanes, peak[c]);
@@ -149,8 +149,8 @@ BRDF_HDR_AVX2 inline void FlushPeaks(__m256 peak[3], float* target) {
 // `peaks` (not null): the row's segment peaks (exposure.h) raised to the largest red, green and
 // blue of the pixels folded, as RaisePeaks does it.
 template <bool kExpose>
-BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, float strength,
-                             float* keep, int width, float delta, LaneSums* sums, float* peaks) {
+BRDF_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, float strength,
+                         float* keep, int width, float delta, LaneSums* sums, float* peaks) {
   __m256d log_sum, lit_log_sum;
   std::memcpy(&log_sum, &sums->log_sum, sizeof(log_sum));
   std::memcpy(&lit_log_sum, &sums->lit_log_sum, sizeof(lit_log_sum));
@@ -259,8 +259,8 @@ BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, flo
 }
 
 // ExposeRow's arithmetic on the floats [0, 8n) of a row; returns 8n.
-BRDF_HDR_AVX2 int64_t ExposeRowAvx2(const float* in, const float* add, int64_t floats, float scale,
-                                    float strength, float* out) {
+BRDF_AVX2 int64_t ExposeRowAvx2(const float* in, const float* add, int64_t floats, float scale,
+                                float strength, float* out) {
   const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
   int64_t i = 0;
   for (; i + 8 <= floats; i += 8) {
@@ -280,8 +280,8 @@ void ExposeRowFrom(const float* in, const float* add, int x0, int width, float s
                    float strength, float* out) {
   int64_t i = int64_t{x0} * Image::kChannels;
   const int64_t floats = int64_t{width} * Image::kChannels;
-#if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled()) {
+#if BRDF_HAS_AVX2_PATHS
+  if (Avx2Enabled()) {
     i += ExposeRowAvx2(in + i, add == nullptr ? nullptr : add + i, floats - i, scale, strength,
                        out + i);
   }
@@ -411,8 +411,8 @@ SceneLuminance MeasureSceneLuminanceByRow(
                     -std::numeric_limits<float>::infinity());
         }
         int x0 = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
-        if (HdrAvx2Enabled()) {
+#if BRDF_HAS_AVX2_PATHS
+        if (Avx2Enabled()) {
           x0 = AddRowAvx2<false>(pixels, nullptr, 1.0f, 0.0f, nullptr, width, delta_f, lanes,
                                  row_peaks);
         }
@@ -432,8 +432,8 @@ SceneLuminance MeasureExposedLuminanceByRow(
         // scratch row's second half, and copied to the kept planes from there.
         float* exposed = scratch + int64_t{width} * Image::kChannels;
         int x0 = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
-        if (HdrAvx2Enabled()) {
+#if BRDF_HAS_AVX2_PATHS
+        if (Avx2Enabled()) {
           x0 = AddRowAvx2<true>(source.in, source.add, scale, strength, source.keep, width, delta_f,
                                 lanes, nullptr);
         }

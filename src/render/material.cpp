@@ -8,8 +8,8 @@
 #include "core/angles.h"
 #include "core/colour.h"
 #include "core/errors.h"
+#include "core/simd.h"
 #include "energy/measured.h"
-#include "hdr/simd.h"
 #include "io/formats.h"
 #include "models/model_source.h"
 
@@ -47,15 +47,15 @@ void AngularPartsBaseline(const float* params, const float* wi_x, const float* w
   AngularParts<Term>(params, wi_x, wi_y, wi_z, wo, n, parts);
 }
 template <typename Term>
-BRDF_HDR_AVX2 void AngularPartsAvx2(const float* params, const float* wi_x, const float* wi_y,
-                                    const float* wi_z, const Vec3f& wo, int n,
-                                    typename Term::template Part<float>* parts) {
+BRDF_AVX2 void AngularPartsAvx2(const float* params, const float* wi_x, const float* wi_y,
+                                const float* wi_z, const Vec3f& wo, int n,
+                                typename Term::template Part<float>* parts) {
   AngularParts<Term>(params, wi_x, wi_y, wi_z, wo, n, parts);
 }
 template <typename M>
 void EvalTermsBatchInFloat(const float* params, const float* wi_x, const float* wi_y,
                            const float* wi_z, const Vec3f& wo, int count, RgbF* f) {
-  const bool avx2 = HdrAvx2Enabled();
+  const bool avx2 = Avx2Enabled();
   for (int first = 0; first < count; first += kModelChunk) {
     const int n = std::min(kModelChunk, count - first);
     bool above[kModelChunk];
@@ -204,7 +204,7 @@ class TabulatedMaterial : public Material {
                       int count, RgbF* f) const override {
     alignas(32) int base[kChunk];
     alignas(32) float weights[8][kChunk];
-    const bool avx2 = HdrAvx2Enabled();
+    const bool avx2 = Avx2Enabled();
     for (int first = 0; first < count; first += kChunk) {
       const int n = std::min(kChunk, count - first);
       if (avx2) {
@@ -246,9 +246,8 @@ class TabulatedMaterial : public Material {
                      int n, int* base, float (*weights)[kChunk]) {
     PlacesOf(wi_x, wi_y, wi_z, wo, n, base, weights);
   }
-  BRDF_HDR_AVX2 static void PlacesAvx2(const float* wi_x, const float* wi_y, const float* wi_z,
-                                       const Vec3f& wo, int n, int* base,
-                                       float (*weights)[kChunk]) {
+  BRDF_AVX2 static void PlacesAvx2(const float* wi_x, const float* wi_y, const float* wi_z,
+                                   const Vec3f& wo, int n, int* base, float (*weights)[kChunk]) {
     PlacesOf(wi_x, wi_y, wi_z, wo, n, base, weights);
   }
 

@@ -14,7 +14,7 @@
 #include "core/format.h"
 #include "core/progress.h"
 #include "core/rng.h"
-#include "hdr/simd.h"
+#include "core/simd.h"
 #include "render/lobe_sampler.h"
 
 namespace brdf {
@@ -82,8 +82,8 @@ class EnvironmentEstimator {
   }
 
  private:
-  BRDF_HDR_AVX2 Estimate PixelAvx2(const Frame& frame, uint64_t seed, uint64_t pixel,
-                                   int64_t* missing) const {
+  BRDF_AVX2 Estimate PixelAvx2(const Frame& frame, uint64_t seed, uint64_t pixel,
+                               int64_t* missing) const {
     return PixelIn(frame, seed, pixel, missing);
   }
   BRDF_LANE_FUNCTION Estimate PixelIn(const Frame& frame, uint64_t seed, uint64_t pixel,
@@ -258,7 +258,7 @@ class EnvironmentEstimator {
   const Environment& environment_;
   std::optional<LobeTechnique> lobe_;
   int spp_;
-  bool avx2_ = HdrAvx2Enabled();
+  bool avx2_ = Avx2Enabled();
 };
 
 }  // namespace
