@@ -66,15 +66,20 @@ Stencil<5> UpStencil(bool odd_x, bool odd_y) {
   return s;
 }
 
-// One RGBA pixel as a vector of four floats: each lane does the scalar arithmetic, so the sums
-// are the same bits as channel-by-channel code, four at a time.
-using Float4 = float __attribute__((vector_size(16)));
-inline Float4 LoadPixel(const float* p) {
-  Float4 v;
-  std::memcpy(&v, p, sizeof(v));
-  return v;
-}
-inline void StorePixel(const Float4& v, float* p) { std::memcpy(p, &v, sizeof(v)); }
+// One RGBA pixel's sum: each channel does the scalar arithmetic in a four-lane loop the
+// compiler vectorizes, so the sums are the same bits as channel-by-channel code.
+struct Pixel {
+  float channel[kC] = {};
+  void AddScaled(float weight, const float* p) {
+    for (int c = 0; c < kC; ++c) channel[c] += weight * p[c];
+  }
+  Pixel operator+(const Pixel& other) const {
+    Pixel sum;
+    for (int c = 0; c < kC; ++c) sum.channel[c] = channel[c] + other.channel[c];
+    return sum;
+  }
+  void Store(float* p) const { std::memcpy(p, channel, sizeof(channel)); }
+};
 
 // The non-zero taps of a stencil as (row offset, column offset, weight).
 struct Tap {
@@ -101,28 +106,28 @@ std::vector<Tap> Taps(const Stencil<N>& s) {
 inline void ApplyTaps(const float* const* rows, const std::vector<Tap>& taps, int first, int base_x,
                       int width, bool inside, float* out) {
   if (inside) {
-    Float4 even{0, 0, 0, 0}, odd{0, 0, 0, 0};
+    Pixel even, odd;
     const size_t count = taps.size();
     size_t k = 0;
     for (; k + 1 < count; k += 2) {
       const Tap& a = taps[k];
       const Tap& b = taps[k + 1];
-      even += a.weight * LoadPixel(rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
-      odd += b.weight * LoadPixel(rows[b.dy - first] + int64_t{base_x + b.dx} * kC);
+      even.AddScaled(a.weight, rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
+      odd.AddScaled(b.weight, rows[b.dy - first] + int64_t{base_x + b.dx} * kC);
     }
     if (k < count) {
       const Tap& a = taps[k];
-      even += a.weight * LoadPixel(rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
+      even.AddScaled(a.weight, rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
     }
-    StorePixel(even + odd, out);
+    (even + odd).Store(out);
     return;
   }
-  Float4 sum{0, 0, 0, 0};
+  Pixel sum;
   for (const Tap& tap : taps) {
     const int x = std::clamp(base_x + tap.dx, 0, width - 1);
-    sum += tap.weight * LoadPixel(rows[tap.dy - first] + int64_t{x} * kC);
+    sum.AddScaled(tap.weight, rows[tap.dy - first] + int64_t{x} * kC);
   }
-  StorePixel(sum, out);
+  sum.Store(out);
 }
 
 // The taps of a stencil resolved against the rows of one destination row, for the pixels whose
@@ -140,14 +145,14 @@ class ResolvedTaps {
       weight_[k] = taps[k].weight;
     }
   }
-  Float4 Sum(int64_t base) const {
-    Float4 even{0, 0, 0, 0}, odd{0, 0, 0, 0};
+  Pixel Sum(int64_t base) const {
+    Pixel even, odd;
     int k = 0;
     for (; k + 1 < N; k += 2) {
-      even += weight_[k] * LoadPixel(row_[k] + (offset_[k] + base));
-      odd += weight_[k + 1] * LoadPixel(row_[k + 1] + (offset_[k + 1] + base));
+      even.AddScaled(weight_[k], row_[k] + (offset_[k] + base));
+      odd.AddScaled(weight_[k + 1], row_[k + 1] + (offset_[k + 1] + base));
     }
-    if (k < N) even += weight_[k] * LoadPixel(row_[k] + (offset_[k] + base));
+    if (k < N) even.AddScaled(weight_[k], row_[k] + (offset_[k] + base));
     return even + odd;
   }
 
@@ -331,7 +336,7 @@ void DualFilterDownRow(const float* const rows[4], int source_width, int source_
   if (Avx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, stop, out);
 #endif
   for (; x < stop; ++x) {
-    StorePixel(resolved.Sum(int64_t{2 * x} * kC), out + int64_t{x} * kC);
+    resolved.Sum(int64_t{2 * x} * kC).Store(out + int64_t{x} * kC);
   }
   for (x = std::max(begin, inside_end); x < end; ++x) {
     ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
@@ -362,11 +367,11 @@ void DualFilterUpRow(const Image& source, int width, int y, float* out) {
 #endif
   for (; x + 1 < inside_end; x += 2) {
     const int64_t base = int64_t{x / 2} * kC;
-    StorePixel(resolved_even.Sum(base), out + int64_t{x} * kC);
-    StorePixel(resolved_odd.Sum(base), out + int64_t{x + 1} * kC);
+    resolved_even.Sum(base).Store(out + int64_t{x} * kC);
+    resolved_odd.Sum(base).Store(out + int64_t{x + 1} * kC);
   }
   if (x < inside_end) {
-    StorePixel(resolved_even.Sum(int64_t{x / 2} * kC), out + int64_t{x} * kC);
+    resolved_even.Sum(int64_t{x / 2} * kC).Store(out + int64_t{x} * kC);
     ++x;
   }
   for (; x < width; ++x) {
