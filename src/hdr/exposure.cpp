@@ -73,9 +73,10 @@ inline void AddFour(const float luminance[4], const float alpha[4], float delta,
     normal &= (argument[k] <= kLargest) & (argument[k] >= kSmallest);
   }
   float logs[4];
-  for (int k = 0; k < 4; ++k) {
-    // Not normal: an infinite pixel or a subnormal delta.
-    logs[k] = normal ? LogOfNormal(argument[k]) : std::log(argument[k]);
+  if (normal) {
+    for (int k = 0; k < 4; ++k) logs[k] = LogOfNormal(argument[k]);
+  } else {  // an infinite pixel or a subnormal delta
+    for (int k = 0; k < 4; ++k) logs[k] = std::log(argument[k]);
   }
   for (int k = 0; k < 4; ++k) {
     const bool counted = alpha[k] > 0.0f;
