@@ -22,12 +22,12 @@
 #include <vector>
 
 #include "core/angles.h"
+#include "core/simd.h"
 #include "hdr/bloom.h"
 #include "hdr/blur.h"
 #include "hdr/exposure.h"
 #include "hdr/image_files.h"
 #include "hdr/pipeline.h"
-#include "hdr/simd.h"
 #include "hdr/tone_map.h"
 #include "render/sphere.h"
 
@@ -144,15 +144,15 @@ BENCHMARK(BM_Stage_SrgbEncode8)
     ->UseRealTime();
 
 // The whole pipeline on the 1080p frame; `avx2` false runs the scalar (SSE2) paths of
-// hdr/simd.h, the same bytes, for a same-run comparison.
+// core/simd.h, the same bytes, for a same-run comparison.
 void RunPipeline(benchmark::State& state, const ToneOptions& options, bool avx2) {
   // The frame is read and resized before the timed loop, not in its first iteration.
   const Image& frame = Frame1080();
-  const bool was = SetHdrAvx2Enabled(avx2);
+  const bool was = SetAvx2Enabled(avx2);
   // The pipeline reads its input and writes only the 8-bit result (and the bloom's small
   // levels): no copy of the frame is needed.
   for (auto _ : state) benchmark::DoNotOptimize(RunTonePipeline(frame, options));
-  SetHdrAvx2Enabled(was);
+  SetAvx2Enabled(was);
 }
 
 ToneOptions PipelineBloomOptions() {

@@ -1,4 +1,4 @@
-// The AVX2 paths of the HDR pipeline (hdr/simd.h) against the scalar ones: the same bytes, the
+// The AVX2 paths of the HDR pipeline (core/simd.h) against the scalar ones: the same bytes, the
 // same statistics, bit for bit, on images made of every edge case the loops branch on.
 #include <gtest/gtest.h>
 
@@ -8,11 +8,11 @@
 #include <random>
 #include <vector>
 
+#include "core/simd.h"
 #include "hdr/bloom.h"
 #include "hdr/blur.h"
 #include "hdr/exposure.h"
 #include "hdr/pipeline.h"
-#include "hdr/simd.h"
 #include "hdr/transfer.h"
 
 namespace brdf {
@@ -22,13 +22,13 @@ namespace {
 // a processor without AVX2 (there is only one path there).
 template <typename Run>
 auto BothPaths(Run&& run) {
-  const bool was = SetHdrAvx2Enabled(true);
-  const bool available = HdrAvx2Enabled();
-  SetHdrAvx2Enabled(false);
+  const bool was = SetAvx2Enabled(true);
+  const bool available = Avx2Enabled();
+  SetAvx2Enabled(false);
   auto scalar = run();
-  SetHdrAvx2Enabled(true);
+  SetAvx2Enabled(true);
   auto vector = run();
-  SetHdrAvx2Enabled(was);
+  SetAvx2Enabled(was);
   return std::make_pair(available, std::make_pair(std::move(scalar), std::move(vector)));
 }
 

@@ -11,8 +11,8 @@
 #include "core/colour.h"
 #include "core/errors.h"
 #include "core/rng.h"
+#include "core/simd.h"
 #include "energy/albedo.h"
-#include "hdr/simd.h"
 #include "io/formats.h"
 #include "io/merl.h"
 #include "models/model_string.h"
@@ -173,11 +173,11 @@ TEST(Render, SameSeedSameImageAnyThreadCountDifferentSeedDifferentNoise) {
 }
 
 // The batch loops' AVX2 paths (the pixel, the lobe's densities, the tabulated interpolant's
-// places; hdr/simd.h) against the baseline's: the same float operations in the same order, so
+// places; core/simd.h) against the baseline's: the same float operations in the same order, so
 // the same image bytes, for a power-cosine lobe, a distribution's lobe and a measurement.
 TEST(Render, SameImageWithAndWithoutTheAvx2Paths) {
-  const bool was = SetHdrAvx2Enabled(true);
-  if (!HdrAvx2Enabled()) GTEST_SKIP() << "no AVX2 on this processor: one path only";
+  const bool was = SetAvx2Enabled(true);
+  if (!Avx2Enabled()) GTEST_SKIP() << "no AVX2 on this processor: one path only";
   testing::ScratchDir dir;
   const Model glossy = ParseModel("blinn-phong:rho_d=0.2:rho_s=0.5:m=300");
   WriteMeasurement(testing::ScatteredSamplesOf(glossy), dir.File("glossy.csv"));
@@ -193,14 +193,14 @@ TEST(Render, SameImageWithAndWithoutTheAvx2Paths) {
   for (const std::string& spec :
        {glossy.ToString(), std::string("ggx:rho_d=0.1:alpha=0.05"), dir.File("glossy.csv")}) {
     const std::unique_ptr<Material> material = LoadMaterial(spec);
-    SetHdrAvx2Enabled(false);
+    SetAvx2Enabled(false);
     const RenderResult baseline = RenderSphere(*material, {}, &environment, options);
-    SetHdrAvx2Enabled(true);
+    SetAvx2Enabled(true);
     const RenderResult avx2 = RenderSphere(*material, {}, &environment, options);
     EXPECT_EQ(baseline.radiance.rgba, avx2.radiance.rgba) << spec;
     EXPECT_EQ(baseline.luminance_std_error, avx2.luminance_std_error) << spec;
   }
-  SetHdrAvx2Enabled(was);
+  SetAvx2Enabled(was);
 }
 
 // A Lambertian measurement, in the MERL layout and as scattered samples, renders like the

@@ -8,11 +8,11 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/simd.h"
 #include "hdr/blur.h"
 #include "hdr/exposure.h"
-#include "hdr/simd.h"
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 #include <immintrin.h>
 #endif
 
@@ -30,11 +30,10 @@ inline void BrightPixel(const float* in, float t, float scale, float* out) {
   for (int c = 0; c < 3; ++c) out[c] = std::max(0.0f, exposed[c] * keep);
 }
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 // BrightPixel on the pixels [0, 8n) of a row, eight at a time with its operations in its
 // order; returns 8n.
-BRDF_HDR_AVX2 int64_t BrightRowAvx2(const float* in, int64_t count, float t, float scale,
-                                    float* out) {
+BRDF_AVX2 int64_t BrightRowAvx2(const float* in, int64_t count, float t, float scale, float* out) {
   const __m256 zero = _mm256_setzero_ps(), scale8 = _mm256_set1_ps(scale), t8 = _mm256_set1_ps(t);
   int64_t x = 0;
   for (; x + 8 <= count; x += 8) {
@@ -80,8 +79,8 @@ BRDF_HDR_AVX2 int64_t BrightRowAvx2(const float* in, int64_t count, float t, flo
 // `count` pixels of the bright pass.
 void BrightRow(const float* in, int64_t count, float t, float scale, float* out) {
   int64_t x = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled()) x = BrightRowAvx2(in, count, t, scale, out);
+#if BRDF_HAS_AVX2_PATHS
+  if (Avx2Enabled()) x = BrightRowAvx2(in, count, t, scale, out);
 #endif
   for (; x < count; ++x) {
     BrightPixel(in + x * Image::kChannels, t, scale, out + x * Image::kChannels);

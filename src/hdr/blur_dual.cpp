@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/simd.h"
 #include "hdr/blur.h"
-#include "hdr/simd.h"
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 #include <immintrin.h>
 #endif
 
@@ -66,15 +66,20 @@ Stencil<5> UpStencil(bool odd_x, bool odd_y) {
   return s;
 }
 
-// One RGBA pixel as a vector of four floats: each lane does the scalar arithmetic, so the sums
-// are the same bits as channel-by-channel code, four at a time.
-using Float4 = float __attribute__((vector_size(16)));
-inline Float4 LoadPixel(const float* p) {
-  Float4 v;
-  std::memcpy(&v, p, sizeof(v));
-  return v;
-}
-inline void StorePixel(const Float4& v, float* p) { std::memcpy(p, &v, sizeof(v)); }
+// One RGBA pixel's sum: each channel does the scalar arithmetic in a four-lane loop the
+// compiler vectorizes, so the sums are the same bits as channel-by-channel code.
+struct Pixel {
+  float channel[kC] = {};
+  void AddScaled(float weight, const float* p) {
+    for (int c = 0; c < kC; ++c) channel[c] += weight * p[c];
+  }
+  Pixel operator+(const Pixel& other) const {
+    Pixel sum;
+    for (int c = 0; c < kC; ++c) sum.channel[c] = channel[c] + other.channel[c];
+    return sum;
+  }
+  void Store(float* p) const { std::memcpy(p, channel, sizeof(channel)); }
+};
 
 // The non-zero taps of a stencil as (row offset, column offset, weight).
 struct Tap {
@@ -101,28 +106,28 @@ std::vector<Tap> Taps(const Stencil<N>& s) {
 inline void ApplyTaps(const float* const* rows, const std::vector<Tap>& taps, int first, int base_x,
                       int width, bool inside, float* out) {
   if (inside) {
-    Float4 even{0, 0, 0, 0}, odd{0, 0, 0, 0};
+    Pixel even, odd;
     const size_t count = taps.size();
     size_t k = 0;
     for (; k + 1 < count; k += 2) {
       const Tap& a = taps[k];
       const Tap& b = taps[k + 1];
-      even += a.weight * LoadPixel(rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
-      odd += b.weight * LoadPixel(rows[b.dy - first] + int64_t{base_x + b.dx} * kC);
+      even.AddScaled(a.weight, rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
+      odd.AddScaled(b.weight, rows[b.dy - first] + int64_t{base_x + b.dx} * kC);
     }
     if (k < count) {
       const Tap& a = taps[k];
-      even += a.weight * LoadPixel(rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
+      even.AddScaled(a.weight, rows[a.dy - first] + int64_t{base_x + a.dx} * kC);
     }
-    StorePixel(even + odd, out);
+    (even + odd).Store(out);
     return;
   }
-  Float4 sum{0, 0, 0, 0};
+  Pixel sum;
   for (const Tap& tap : taps) {
     const int x = std::clamp(base_x + tap.dx, 0, width - 1);
-    sum += tap.weight * LoadPixel(rows[tap.dy - first] + int64_t{x} * kC);
+    sum.AddScaled(tap.weight, rows[tap.dy - first] + int64_t{x} * kC);
   }
-  StorePixel(sum, out);
+  sum.Store(out);
 }
 
 // The taps of a stencil resolved against the rows of one destination row, for the pixels whose
@@ -140,21 +145,21 @@ class ResolvedTaps {
       weight_[k] = taps[k].weight;
     }
   }
-  Float4 Sum(int64_t base) const {
-    Float4 even{0, 0, 0, 0}, odd{0, 0, 0, 0};
+  Pixel Sum(int64_t base) const {
+    Pixel even, odd;
     int k = 0;
     for (; k + 1 < N; k += 2) {
-      even += weight_[k] * LoadPixel(row_[k] + (offset_[k] + base));
-      odd += weight_[k + 1] * LoadPixel(row_[k + 1] + (offset_[k + 1] + base));
+      even.AddScaled(weight_[k], row_[k] + (offset_[k] + base));
+      odd.AddScaled(weight_[k + 1], row_[k + 1] + (offset_[k + 1] + base));
     }
-    if (k < N) even += weight_[k] * LoadPixel(row_[k] + (offset_[k] + base));
+    if (k < N) even.AddScaled(weight_[k], row_[k] + (offset_[k] + base));
     return even + odd;
   }
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
   // Sum(base) and Sum(base + one pixel) in the two halves of one vector: each half does
   // Sum's arithmetic, so the bits are the same.
-  BRDF_HDR_AVX2 __m256 SumTwo(int64_t base) const {
+  BRDF_AVX2 __m256 SumTwo(int64_t base) const {
     __m256 even = _mm256_setzero_ps(), odd = _mm256_setzero_ps();
     int k = 0;
     for (; k + 1 < N; k += 2) {
@@ -174,7 +179,7 @@ class ResolvedTaps {
   // bits): one broadcast of each weight and one look-up of each tap's row serve M vectors,
   // which a loop of SumTwo calls spent as many loads on as on the pixels.
   template <int M>
-  BRDF_HDR_AVX2 void SumTwoMany(int64_t base, __m256 sums[M]) const {
+  BRDF_AVX2 void SumTwoMany(int64_t base, __m256 sums[M]) const {
     __m256 even[M], odd[M];
     for (int j = 0; j < M; ++j) even[j] = odd[j] = _mm256_setzero_ps();
     int k = 0;
@@ -210,7 +215,7 @@ class ResolvedTaps {
   }
   // Sum(base) when Paired(): the low half of a vector gathers the even taps' sum, the high
   // half the odd taps', in Sum's order.
-  BRDF_HDR_AVX2 __m128 SumPaired(int64_t base) const {
+  BRDF_AVX2 __m128 SumPaired(int64_t base) const {
     __m256 sum = _mm256_setzero_ps();
     for (int k = 0; k < N; k += 2) {
       const __m256 weights = _mm256_setr_m128(_mm_set1_ps(weight_[k]), _mm_set1_ps(weight_[k + 1]));
@@ -232,9 +237,9 @@ class ResolvedTaps {
 constexpr int kDownTaps = 16;
 constexpr int kUpTaps = 13;
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 // The inside pixels [x, end) of a step down with paired taps; returns `end`.
-BRDF_HDR_AVX2 int DownInsideAvx2(const ResolvedTaps<kDownTaps>& taps, int x, int end, float* out) {
+BRDF_AVX2 int DownInsideAvx2(const ResolvedTaps<kDownTaps>& taps, int x, int end, float* out) {
   for (; x < end; ++x) {
     _mm_storeu_ps(out + int64_t{x} * kC, taps.SumPaired(int64_t{2 * x} * kC));
   }
@@ -244,8 +249,8 @@ BRDF_HDR_AVX2 int DownInsideAvx2(const ResolvedTaps<kDownTaps>& taps, int x, int
 // The inside pixels of a doubling step from the even pixel x, four at a time (pixels x and
 // x + 2 of the even phase in one vector, x + 1 and x + 3 of the odd one); returns the first
 // pixel not written.
-BRDF_HDR_AVX2 int UpInsideAvx2(const ResolvedTaps<kUpTaps>& even, const ResolvedTaps<kUpTaps>& odd,
-                               int x, int end, float* out) {
+BRDF_AVX2 int UpInsideAvx2(const ResolvedTaps<kUpTaps>& even, const ResolvedTaps<kUpTaps>& odd,
+                           int x, int end, float* out) {
   constexpr int kVectors = 4;  // sixteen pixels a step, then four
   for (; x + 4 * kVectors - 1 < end; x += 4 * kVectors) {
     const int64_t base = int64_t{x / 2} * kC;
@@ -327,11 +332,11 @@ void DualFilterDownRow(const float* const rows[4], int source_width, int source_
   const ResolvedTaps<kDownTaps> resolved(rows, taps, -1);
   int x = std::max(begin, inside_begin);
   const int stop = std::max(x, std::min(end, inside_end));
-#if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, stop, out);
+#if BRDF_HAS_AVX2_PATHS
+  if (Avx2Enabled() && resolved.Paired()) x = DownInsideAvx2(resolved, x, stop, out);
 #endif
   for (; x < stop; ++x) {
-    StorePixel(resolved.Sum(int64_t{2 * x} * kC), out + int64_t{x} * kC);
+    resolved.Sum(int64_t{2 * x} * kC).Store(out + int64_t{x} * kC);
   }
   for (x = std::max(begin, inside_end); x < end; ++x) {
     ApplyTaps(rows, taps, -1, 2 * x, source_width, false, out + int64_t{x} * kC);
@@ -357,16 +362,16 @@ void DualFilterUpRow(const Image& source, int width, int y, float* out) {
   }
   const ResolvedTaps<kUpTaps> resolved_even(rows, even, -2), resolved_odd(rows, odd, -2);
   int x = inside_begin;  // even: inside_begin is 4 or width
-#if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled()) x = UpInsideAvx2(resolved_even, resolved_odd, x, inside_end, out);
+#if BRDF_HAS_AVX2_PATHS
+  if (Avx2Enabled()) x = UpInsideAvx2(resolved_even, resolved_odd, x, inside_end, out);
 #endif
   for (; x + 1 < inside_end; x += 2) {
     const int64_t base = int64_t{x / 2} * kC;
-    StorePixel(resolved_even.Sum(base), out + int64_t{x} * kC);
-    StorePixel(resolved_odd.Sum(base), out + int64_t{x + 1} * kC);
+    resolved_even.Sum(base).Store(out + int64_t{x} * kC);
+    resolved_odd.Sum(base).Store(out + int64_t{x + 1} * kC);
   }
   if (x < inside_end) {
-    StorePixel(resolved_even.Sum(int64_t{x / 2} * kC), out + int64_t{x} * kC);
+    resolved_even.Sum(int64_t{x / 2} * kC).Store(out + int64_t{x} * kC);
     ++x;
   }
   for (; x < width; ++x) {

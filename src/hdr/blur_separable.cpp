@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hdr/simd.h"
+#include "core/simd.h"
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 #include <immintrin.h>
 #endif
 
@@ -32,12 +32,12 @@ namespace {
 
 constexpr int kC = Image::kChannels;
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 // ConvolveRow's inside pixels from x on, two at a time (pixel x in the low half of a vector,
 // x + 1 in the high half, each with the scalar sums' order); returns the first pixel not
 // written.
-BRDF_HDR_AVX2 int ConvolveInsideAvx2(const float* in, float* out, int x, int width,
-                                     const Kernel1D& kernel) {
+BRDF_AVX2 int ConvolveInsideAvx2(const float* in, float* out, int x, int width,
+                                 const Kernel1D& kernel) {
   const int taps = static_cast<int>(kernel.weights.size());
   const int first = kernel.first_offset, last = first + taps - 1;
   const float* weights = kernel.weights.data();
@@ -61,7 +61,7 @@ BRDF_HDR_AVX2 int ConvolveInsideAvx2(const float* in, float* out, int x, int wid
 }
 
 // out[i] += w * in[i], eight at a time.
-BRDF_HDR_AVX2 int64_t AddScaledAvx2(float* out, const float* in, float w, int64_t count) {
+BRDF_AVX2 int64_t AddScaledAvx2(float* out, const float* in, float w, int64_t count) {
   const __m256 w8 = _mm256_set1_ps(w);
   int64_t i = 0;
   for (; i + 8 <= count; i += 8) {
@@ -77,9 +77,9 @@ BRDF_HDR_AVX2 int64_t AddScaledAvx2(float* out, const float* in, float w, int64_
 void ConvolveRow(const float* in, float* out, int width, const Kernel1D& kernel) {
   const int taps = static_cast<int>(kernel.weights.size());
   const int first = kernel.first_offset, last = first + taps - 1;
-  [[maybe_unused]] const bool avx2 = HdrAvx2Enabled();
+  [[maybe_unused]] const bool avx2 = Avx2Enabled();
   for (int x = 0; x < width; ++x) {
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
     if (avx2 && x + first >= 0 && x + last < width) {
       x = ConvolveInsideAvx2(in, out, x, width, kernel);
       if (x >= width) break;
@@ -124,7 +124,7 @@ Image ConvolveSeparable(const Image& image, const Kernel1D& kernel) {
   // (whole rows would stream the image through memory once per tap).
   constexpr int kBlock = 64;
   Image result(width, height, 0.0f);  // zeroed a row at a time below
-  [[maybe_unused]] const bool avx2 = HdrAvx2Enabled();
+  [[maybe_unused]] const bool avx2 = Avx2Enabled();
   tbb::parallel_for(0, (width + kBlock - 1) / kBlock, [&](int block) {
     const int x0 = block * kBlock, x1 = std::min(width, x0 + kBlock);
     const int64_t span = int64_t{x1 - x0} * kC;
@@ -137,7 +137,7 @@ Image ConvolveSeparable(const Image& image, const Kernel1D& kernel) {
         const int source = std::clamp(y + kernel.first_offset + k, 0, height - 1);
         const float* in = rows_done.pixel(x0, source);
         int64_t i = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
         if (avx2) i = AddScaledAvx2(out, in, w, span);
 #endif
         for (; i < span; ++i) out[i] += w * in[i];

@@ -12,9 +12,9 @@
 
 #include "core/deterministic_reduce.h"
 #include "core/errors.h"
-#include "hdr/simd.h"
+#include "core/simd.h"
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 #include <immintrin.h>
 #endif
 
@@ -32,68 +32,67 @@ struct LogSum {
   int64_t black = 0;
 };
 
-using Float4 = float __attribute__((vector_size(16)));
-using Int4 = int32_t __attribute__((vector_size(16)));
-
-// Natural logarithm of four positive, finite, normal floats, within about 2 float ulps; the
+// Natural logarithm of a positive, finite, normal float, within about 2 float ulps; the
 // library's scalar log per pixel was most of the statistics pass. x = 2^e m with m in
 // [sqrt(1/2), sqrt(2)), and log m = 2 atanh(s) = 2 (s + s^3/3 + s^5/5 + ...) with
 // s = (m - 1) / (m + 1), |s| <= 0.172: the series to s^9 leaves a relative error below 1e-8.
-Float4 Log4(Float4 x) {
-  Int4 bits;
+inline float LogOfNormal(float x) {
+  int32_t bits;
   std::memcpy(&bits, &x, sizeof(bits));
-  Int4 exponent = ((bits >> 23) & 0xff) - 127;
-  const Int4 mantissa_bits = (bits & 0x007fffff) | 0x3f800000;
-  Float4 m;
+  int32_t exponent = ((bits >> 23) & 0xff) - 127;
+  const int32_t mantissa_bits = (bits & 0x007fffff) | 0x3f800000;
+  float m;
   std::memcpy(&m, &mantissa_bits, sizeof(m));
-  const Int4 above = m > 1.41421356f;  // all ones where true
+  const bool above = m > 1.41421356f;
   m = above ? m * 0.5f : m;
-  exponent -= above;
-  const Float4 s = (m - 1.0f) / (m + 1.0f);
-  const Float4 s2 = s * s;
-  const Float4 series =
-      1.0f + s2 * (1.0f / 3 + s2 * (1.0f / 5 + s2 * (1.0f / 7 + s2 * (1.0f / 9))));
-  const Float4 e = __builtin_convertvector(exponent, Float4);
-  return e * 0.693147181f + 2.0f * s * series;
+  exponent += above ? 1 : 0;
+  const float s = (m - 1.0f) / (m + 1.0f);
+  const float s2 = s * s;
+  const float series = 1.0f + s2 * (1.0f / 3 + s2 * (1.0f / 5 + s2 * (1.0f / 7 + s2 * (1.0f / 9))));
+  return static_cast<float>(exponent) * 0.693147181f + 2.0f * s * series;
 }
-
-using Double4 = double __attribute__((vector_size(32)));
 
 // Sums of one chunk in four lanes (pixel x goes to lane x mod 4), joined in a fixed order.
 struct LaneSums {
-  Double4 log_sum{0, 0, 0, 0};
-  Double4 lit_log_sum{0, 0, 0, 0};
-  Float4 max{0, 0, 0, 0};
-  Int4 pixels{0, 0, 0, 0};
-  Int4 black{0, 0, 0, 0};
+  double log_sum[4] = {};
+  double lit_log_sum[4] = {};
+  float max[4] = {};
+  int32_t pixels[4] = {};
+  int32_t black[4] = {};
 };
 
-// Folds four pixels (alpha and luminance clamped at 0; padding lanes have alpha 0) into `sums`.
-inline void AddFour(const Float4& luminance, const Float4& alpha, float delta, LaneSums* sums) {
+// Folds four pixels (alpha and luminance clamped at 0; padding lanes have alpha 0) into `sums`:
+// LogOfNormal when all four arguments are normal floats, else the library's log for the four.
+inline void AddFour(const float luminance[4], const float alpha[4], float delta, LaneSums* sums) {
   constexpr float kLargest = std::numeric_limits<float>::max();
   constexpr float kSmallest = std::numeric_limits<float>::min();  // the least normal float
-  const Float4 argument = delta + luminance;
-  Float4 logs;
-  const Int4 normal = (argument <= kLargest) & (argument >= kSmallest);
-  if (normal[0] & normal[1] & normal[2] & normal[3]) {
-    logs = Log4(argument);
-  } else {  // an infinite pixel or a subnormal delta: the library's log
+  float argument[4];
+  bool normal = true;
+  for (int k = 0; k < 4; ++k) {
+    argument[k] = delta + luminance[k];
+    normal &= (argument[k] <= kLargest) & (argument[k] >= kSmallest);
+  }
+  float logs[4];
+  if (normal) {
+    for (int k = 0; k < 4; ++k) logs[k] = LogOfNormal(argument[k]);
+  } else {  // an infinite pixel or a subnormal delta
     for (int k = 0; k < 4; ++k) logs[k] = std::log(argument[k]);
   }
-  const Int4 counted = alpha > 0.0f;  // all ones where true
-  const Int4 lit = counted & (luminance > 0.0f);
-  const Float4 zero{0, 0, 0, 0};
-  sums->log_sum += __builtin_convertvector(counted ? logs : zero, Double4);
-  sums->lit_log_sum += __builtin_convertvector(lit ? logs : zero, Double4);
-  sums->max = (counted & (luminance > sums->max)) ? luminance : sums->max;
-  sums->pixels -= counted;
-  sums->black -= counted & ~lit;
+  for (int k = 0; k < 4; ++k) {
+    const bool counted = alpha[k] > 0.0f;
+    const bool lit = counted & (luminance[k] > 0.0f);
+    sums->log_sum[k] += static_cast<double>(counted ? logs[k] : 0.0f);
+    sums->lit_log_sum[k] += static_cast<double>(lit ? logs[k] : 0.0f);
+    sums->max[k] = (counted & (luminance[k] > sums->max[k])) ? luminance[k] : sums->max[k];
+    sums->pixels[k] += counted;
+    sums->black[k] += counted & !lit;
+  }
 }
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 // Four RGBA pixels in each 128-bit half of `quad` (p[k] pixel k of the half) as planes:
 // channel[c] holds channel c of pixels 0..3 (low half) and 4..7 (high half).
-BRDF_HDR_AVX2 inline void TransposeQuads(const __m256 quad[4], __m256 channel[4]) {
+BRDF_AVX2 inline void TransposeQuads(const __m256 quad[4], __m256 channel[4]) {
   const __m256 t0 = _mm256_unpacklo_ps(quad[0], quad[1]);  // r0 r1 g0 g1
   const __m256 t1 = _mm256_unpackhi_ps(quad[0], quad[1]);  // b0 b1 a0 a1
   const __m256 t2 = _mm256_unpacklo_ps(quad[2], quad[3]);  // r2 r3 g2 g3
@@ -104,8 +103,8 @@ BRDF_HDR_AVX2 inline void TransposeQuads(const __m256 quad[4], __m256 channel[4]
   channel[3] = _mm256_shuffle_ps(t1, t3, 0xee);
 }
 
-// Log4 on eight lanes: the same operations, so the same bits.
-BRDF_HDR_AVX2 inline __m256 Log8(__m256 x) {
+// LogOfNormal on eight lanes: the same operations, so the same bits.
+BRDF_AVX2 inline __m256 Log8(__m256 x) {
   const __m256i bits = _mm256_castps_si256(x);
   __m256i exponent =
       _mm256_sub_epi32(_mm256_and_si256(_mm256_srli_epi32(bits, 23), _mm256_set1_epi32(0xff)),
@@ -130,7 +129,7 @@ BRDF_HDR_AVX2 inline __m256 Log8(__m256 x) {
 
 // Raises target[c] to the largest lane of peak[c] (RaisePeaks' comparison) and resets the
 // lanes to -infinity.
-BRDF_HDR_AVX2 inline void FlushPeaks(__m256 peak[3], float* target) {
+BRDF_AVX2 inline void FlushPeaks(__m256 peak[3], float* target) {
   for (int c = 0; c < 3; ++c) {
     alignas(32) float lanes[8];
     _mm256_store_ps(lanes, peak[c]);
@@ -149,8 +148,8 @@ BRDF_HDR_AVX2 inline void FlushPeaks(__m256 peak[3], float* target) {
 // `peaks` (not null): the row's segment peaks (exposure.h) raised to the largest red, green and
 // blue of the pixels folded, as RaisePeaks does it.
 template <bool kExpose>
-BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, float strength,
-                             float* keep, int width, float delta, LaneSums* sums, float* peaks) {
+BRDF_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, float strength,
+                         float* keep, int width, float delta, LaneSums* sums, float* peaks) {
   __m256d log_sum, lit_log_sum;
   std::memcpy(&log_sum, &sums->log_sum, sizeof(log_sum));
   std::memcpy(&lit_log_sum, &sums->lit_log_sum, sizeof(lit_log_sum));
@@ -259,8 +258,8 @@ BRDF_HDR_AVX2 int AddRowAvx2(const float* in, const float* add, float scale, flo
 }
 
 // ExposeRow's arithmetic on the floats [0, 8n) of a row; returns 8n.
-BRDF_HDR_AVX2 int64_t ExposeRowAvx2(const float* in, const float* add, int64_t floats, float scale,
-                                    float strength, float* out) {
+BRDF_AVX2 int64_t ExposeRowAvx2(const float* in, const float* add, int64_t floats, float scale,
+                                float strength, float* out) {
   const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
   int64_t i = 0;
   for (; i + 8 <= floats; i += 8) {
@@ -280,8 +279,8 @@ void ExposeRowFrom(const float* in, const float* add, int x0, int width, float s
                    float strength, float* out) {
   int64_t i = int64_t{x0} * Image::kChannels;
   const int64_t floats = int64_t{width} * Image::kChannels;
-#if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled()) {
+#if BRDF_HAS_AVX2_PATHS
+  if (Avx2Enabled()) {
     i += ExposeRowAvx2(in + i, add == nullptr ? nullptr : add + i, floats - i, scale, strength,
                        out + i);
   }
@@ -316,22 +315,25 @@ void RaisePeaks(const float* row, int x0, int width, float* peaks) {
 }
 
 // Folds one row into `sums`, four pixels at a time, the sums in double. The sums are kept in
-// a local while the row is read: a vector of floats may alias the row, so through the pointer
+// a local while the row is read: the float lanes may alias the row, so through the pointer
 // they would be stored and reloaded for every four pixels.
 // Starts at pixel `x0`, a multiple of 4 (the lane of pixel x is x mod 4).
 void AddRow(const float* row, int x0, int width, float delta, LaneSums* sums) {
   LaneSums local = *sums;
-  const Float4 zero{0, 0, 0, 0};
   for (; x0 + 4 <= width; x0 += 4) {
     const float* p = row + int64_t{x0} * Image::kChannels;
-    const Float4 r{p[0], p[4], p[8], p[12]}, g{p[1], p[5], p[9], p[13]},
-        b{p[2], p[6], p[10], p[14]}, alpha{p[3], p[7], p[11], p[15]};
-    // PixelLuminance's operations in its order, then std::max(0, L) (NaN gives 0).
-    const Float4 luminance = 0.2126f * r + 0.7152f * g + 0.0722f * b;
-    AddFour(luminance > 0.0f ? luminance : zero, alpha, delta, &local);
+    float luminance[4], alpha[4];
+    for (int k = 0; k < 4; ++k) {
+      const float* rgba = p + 4 * k;
+      // PixelLuminance's operations in its order, then std::max(0, L) (NaN gives 0).
+      const float l = 0.2126f * rgba[0] + 0.7152f * rgba[1] + 0.0722f * rgba[2];
+      luminance[k] = l > 0.0f ? l : 0.0f;
+      alpha[k] = rgba[3];
+    }
+    AddFour(luminance, alpha, delta, &local);
   }
   if (x0 < width) {
-    Float4 luminance = zero, alpha = zero;
+    float luminance[4] = {}, alpha[4] = {};
     for (int k = 0; x0 + k < width; ++k) {
       const float* rgba = row + int64_t{x0 + k} * Image::kChannels;
       alpha[k] = rgba[3];
@@ -411,8 +413,8 @@ SceneLuminance MeasureSceneLuminanceByRow(
                     -std::numeric_limits<float>::infinity());
         }
         int x0 = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
-        if (HdrAvx2Enabled()) {
+#if BRDF_HAS_AVX2_PATHS
+        if (Avx2Enabled()) {
           x0 = AddRowAvx2<false>(pixels, nullptr, 1.0f, 0.0f, nullptr, width, delta_f, lanes,
                                  row_peaks);
         }
@@ -432,8 +434,8 @@ SceneLuminance MeasureExposedLuminanceByRow(
         // scratch row's second half, and copied to the kept planes from there.
         float* exposed = scratch + int64_t{width} * Image::kChannels;
         int x0 = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
-        if (HdrAvx2Enabled()) {
+#if BRDF_HAS_AVX2_PATHS
+        if (Avx2Enabled()) {
           x0 = AddRowAvx2<true>(source.in, source.add, scale, strength, source.keep, width, delta_f,
                                 lanes, nullptr);
         }

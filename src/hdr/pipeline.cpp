@@ -11,11 +11,11 @@
 #include "core/colour.h"
 #include "core/errors.h"
 #include "core/format.h"
+#include "core/simd.h"
 #include "hdr/bloom.h"
 #include "hdr/exposure.h"
-#include "hdr/simd.h"
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 #include <immintrin.h>
 #endif
 
@@ -111,14 +111,13 @@ inline void KeptPixel(const float* planes, int width, int x, float rgb[3]) {
   for (int c = 0; c < 3; ++c) rgb[c] = planes[int64_t{c} * width + x];
 }
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 // PixelToneMap<kOperator> on eight pixels given as planes channel[c], with its operations in
 // its order, into red[0..8), green[0..8), blue[0..8). Not for the exponential operator
 // (std::exp has no exact vector twin).
 template <ToneOperator kOperator>
-BRDF_HDR_AVX2 inline void ToneMapEightAvx2(const __m256 channel[3], __m256 key8,
-                                           __m256 white_squared, float* red, float* green,
-                                           float* blue) {
+BRDF_AVX2 inline void ToneMapEightAvx2(const __m256 channel[3], __m256 key8, __m256 white_squared,
+                                       float* red, float* green, float* blue) {
   static_assert(kOperator != ToneOperator::kExposure, "std::exp has no exact vector twin");
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
   const __m256 world =
@@ -151,8 +150,8 @@ BRDF_HDR_AVX2 inline void ToneMapEightAvx2(const __m256 channel[3], __m256 key8,
 // PixelToneMap<kOperator> on the pixels [0, 8n) of a row kept as three planes (in[x],
 // in[width + x], in[2 width + x]); returns 8n.
 template <ToneOperator kOperator>
-BRDF_HDR_AVX2 int ToneMapPlanesAvx2(const float* in, int width, float key_scale, float white,
-                                    float* red, float* green, float* blue) {
+BRDF_AVX2 int ToneMapPlanesAvx2(const float* in, int width, float key_scale, float white,
+                                float* red, float* green, float* blue) {
   const __m256 key8 = _mm256_set1_ps(key_scale), white_squared = _mm256_set1_ps(white * white);
   int x = 0;
   for (; x + 8 <= width; x += 8) {
@@ -167,9 +166,9 @@ BRDF_HDR_AVX2 int ToneMapPlanesAvx2(const float* in, int width, float key_scale,
 // strength) would make, made here on the way; writes the planes red[x], green[x], blue[x];
 // returns 8n.
 template <ToneOperator kOperator>
-BRDF_HDR_AVX2 int ToneMapRowAvx2(const float* row, const float* add, float scale, float strength,
-                                 int width, float key_scale, float white, float* red, float* green,
-                                 float* blue) {
+BRDF_AVX2 int ToneMapRowAvx2(const float* row, const float* add, float scale, float strength,
+                             int width, float key_scale, float white, float* red, float* green,
+                             float* blue) {
   const __m256 key8 = _mm256_set1_ps(key_scale), white_squared = _mm256_set1_ps(white * white);
   const __m256 scale8 = _mm256_set1_ps(scale), strength8 = _mm256_set1_ps(strength);
   int x = 0;
@@ -321,7 +320,7 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
   display.height = image.height;
   display.rgb.resize(image.pixel_count() * 3);
   const int tasks = (image.height + kRowsPerTask - 1) / kRowsPerTask;
-  [[maybe_unused]] const bool avx2 = HdrAvx2Enabled();
+  [[maybe_unused]] const bool avx2 = Avx2Enabled();
   ForToneOperator(result.mapping, [&](const auto& map) {
     [[maybe_unused]] constexpr ToneOperator kOperator = std::decay_t<decltype(map)>::kToneOperator;
     tbb::parallel_for(0, tasks, [&](int task) {
@@ -335,7 +334,7 @@ ToneResult RunTonePipeline(const Image& image, const ToneOptions& options) {
       const int y1 = std::min(image.height, (task + 1) * kRowsPerTask);
       for (int y = task * kRowsPerTask; y < y1; ++y) {
         uint8_t* out = display.rgb.data() + int64_t{y} * width * 3;
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
         if constexpr (kOperator != ToneOperator::kExposure) {
           if (avx2) {
             float* const red = mapped;

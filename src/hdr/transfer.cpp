@@ -8,9 +8,9 @@
 
 #include "core/errors.h"
 #include "core/format.h"
-#include "hdr/simd.h"
+#include "core/simd.h"
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 #include <immintrin.h>
 #endif
 
@@ -54,7 +54,7 @@ double TransferCurve::Decode(double encoded) const {
   return kind == Kind::kSrgb ? SrgbDecode(encoded) : std::pow(encoded, gamma);
 }
 
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
 namespace {
 
 // A quantizer's tables as the vector code reads them: bucket b's next threshold is the float
@@ -68,7 +68,7 @@ struct QuantizerTables {
 
 // Quantizer8::Encode on eight values: the same comparisons, the bucket and threshold tables
 // read by gathers; codes as 32-bit integers.
-BRDF_HDR_AVX2 inline __m256i Codes8(__m256 linear, const QuantizerTables& tables) {
+BRDF_AVX2 inline __m256i Codes8(__m256 linear, const QuantizerTables& tables) {
   // Values outside (0, 1) (and NaN) get a clamped, valid index; their code is replaced below.
   const __m256i index = _mm256_min_epu32(_mm256_srli_epi32(_mm256_castps_si256(linear), 16),
                                          _mm256_set1_epi32(tables.last_bucket));
@@ -91,8 +91,8 @@ BRDF_HDR_AVX2 inline __m256i Codes8(__m256 linear, const QuantizerTables& tables
 }
 
 // The values of whole groups of eight; returns how many were encoded.
-BRDF_HDR_AVX2 int64_t EncodeManyAvx2(const float* linear, int64_t count, uint8_t* out,
-                                     const QuantizerTables& tables) {
+BRDF_AVX2 int64_t EncodeManyAvx2(const float* linear, int64_t count, uint8_t* out,
+                                 const QuantizerTables& tables) {
   int64_t i = 0;
   for (; i + 8 <= count; i += 8) {
     const __m256i codes = Codes8(_mm256_loadu_ps(linear + i), tables);
@@ -103,8 +103,8 @@ BRDF_HDR_AVX2 int64_t EncodeManyAvx2(const float* linear, int64_t count, uint8_t
   return i;
 }
 
-BRDF_HDR_AVX2 int64_t EncodePlanesAvx2(const float* red, const float* green, const float* blue,
-                                       int64_t count, uint8_t* rgb, const QuantizerTables& tables) {
+BRDF_AVX2 int64_t EncodePlanesAvx2(const float* red, const float* green, const float* blue,
+                                   int64_t count, uint8_t* rgb, const QuantizerTables& tables) {
   // Within each 128-bit half: r0..r3 g0..g3 b0..b3 (then zeros) to r0 g0 b0 r1 ... b3.
   const __m256i interleave =
       _mm256_setr_epi8(0, 4, 8, 1, 5, 9, 2, 6, 10, 3, 7, 11, -128, -128, -128, -128, 0, 4, 8, 1, 5,
@@ -134,10 +134,10 @@ void Quantizer8::EncodeMany(const float* linear, int64_t count, uint8_t* out) co
   const float* const thresholds = thresholds_.data();
   const int extra_steps = max_codes_per_bucket_ - 1;
   int64_t i = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
   static_assert(sizeof(Bucket) == 8 && offsetof(Bucket, next) == 0 && offsetof(Bucket, start) == 4,
                 "the vector path reads a bucket as two 32-bit words");
-  if (HdrAvx2Enabled()) {
+  if (Avx2Enabled()) {
     i = EncodeManyAvx2(linear, count, out, {buckets, thresholds, extra_steps, kBuckets - 1});
   }
 #endif
@@ -150,8 +150,8 @@ void Quantizer8::EncodePlanes(const float* red, const float* green, const float*
   const float* const thresholds = thresholds_.data();
   const int extra_steps = max_codes_per_bucket_ - 1;
   int64_t i = 0;
-#if BRDF_HDR_HAS_AVX2_PATHS
-  if (HdrAvx2Enabled()) {
+#if BRDF_HAS_AVX2_PATHS
+  if (Avx2Enabled()) {
     i = EncodePlanesAvx2(red, green, blue, count, rgb,
                          {buckets, thresholds, extra_steps, kBuckets - 1});
   }

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "core/float_math.h"
+#include "core/simd.h"
 #include "energy/monte_carlo.h"
-#include "hdr/simd.h"
 #include "models/lobe.h"
 
 namespace brdf {
@@ -106,8 +106,8 @@ class LobeSampler {
   // a second time for AVX2 (8 lanes; no FMA, so the same float operations and numbers as the
   // baseline's 4) and chosen at run time. (The power cosine's draws stay 4 lanes wide: GCC 12
   // compiles their loop scalar for AVX2.)
-  BRDF_HDR_AVX2 void MisPdfsAvx2(const float* x, const float* y, const float* z, int count,
-                                 float* mis_pdf) const;
+  BRDF_AVX2 void MisPdfsAvx2(const float* x, const float* y, const float* z, int count,
+                             float* mis_pdf) const;
   void MisPdfsIn(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
   // (e+1)/(2 pi) (1 - one_minus_cos)^e, keeping the digits of a cosine near 1.
   BRDF_LANE_FUNCTION float PowerCosineDensity(float one_minus_cos) const {
@@ -128,7 +128,7 @@ class LobeSampler {
   Vec3 wo_double_;
   float exponent_ = 1.0f, normalization_ = 1.0f, inverse_exponent_plus_one_ = 0.5f;
   Eigen::Matrix3f axis_frame_;  // rows: the tangent frame about the axis (mirror direction or wo)
-  bool avx2_ = HdrAvx2Enabled();
+  bool avx2_ = Avx2Enabled();
 };
 
 }  // namespace brdf

@@ -8,8 +8,8 @@
 #include "core/angles.h"
 #include "core/colour.h"
 #include "core/errors.h"
+#include "core/simd.h"
 #include "energy/measured.h"
-#include "hdr/simd.h"
 #include "io/formats.h"
 #include "models/model_source.h"
 #include "render/table_sampler.h"
@@ -48,15 +48,15 @@ void AngularPartsBaseline(const float* params, const float* wi_x, const float* w
   AngularParts<Term>(params, wi_x, wi_y, wi_z, wo, n, parts);
 }
 template <typename Term>
-BRDF_HDR_AVX2 void AngularPartsAvx2(const float* params, const float* wi_x, const float* wi_y,
-                                    const float* wi_z, const Vec3f& wo, int n,
-                                    typename Term::template Part<float>* parts) {
+BRDF_AVX2 void AngularPartsAvx2(const float* params, const float* wi_x, const float* wi_y,
+                                const float* wi_z, const Vec3f& wo, int n,
+                                typename Term::template Part<float>* parts) {
   AngularParts<Term>(params, wi_x, wi_y, wi_z, wo, n, parts);
 }
 template <typename M>
 void EvalTermsBatchInFloat(const float* params, const float* wi_x, const float* wi_y,
                            const float* wi_z, const Vec3f& wo, int count, RgbF* f) {
-  const bool avx2 = HdrAvx2Enabled();
+  const bool avx2 = Avx2Enabled();
   for (int first = 0; first < count; first += kModelChunk) {
     const int n = std::min(kModelChunk, count - first);
     bool above[kModelChunk];
@@ -145,21 +145,6 @@ class MeasuredTableMaterial : public Material {
   std::string lookup_name_;
 };
 
-// Four lanes of float or double as one vector (GCC's and Clang's vector extension: the
-// arithmetic of each lane is that of the scalar type), and the mask a comparison gives.
-template <typename T>
-struct FourLanes;
-template <>
-struct FourLanes<float> {
-  using Vector = float __attribute__((vector_size(16)));
-  using Mask = int32_t __attribute__((vector_size(16)));
-};
-template <>
-struct FourLanes<double> {
-  using Vector = double __attribute__((vector_size(32)));
-  using Mask = int64_t __attribute__((vector_size(32)));
-};
-
 // Scattered data: the shared inverse-distance interpolant (energy/measured.h), tabulated once
 // at the centres of a 32^3 half/difference grid so that a preview's millions of lookups cost
 // one index each (see material.h).
@@ -210,7 +195,7 @@ class TabulatedMaterial : public Material {
                       int count, RgbF* f) const override {
     alignas(32) int base[kChunk];
     alignas(32) float weights[8][kChunk];
-    const bool avx2 = HdrAvx2Enabled();
+    const bool avx2 = Avx2Enabled();
     for (int first = 0; first < count; first += kChunk) {
       const int n = std::min(kChunk, count - first);
       if (avx2) {
@@ -252,9 +237,8 @@ class TabulatedMaterial : public Material {
                      int n, int* base, float (*weights)[kChunk]) {
     PlacesOf(wi_x, wi_y, wi_z, wo, n, base, weights);
   }
-  BRDF_HDR_AVX2 static void PlacesAvx2(const float* wi_x, const float* wi_y, const float* wi_z,
-                                       const Vec3f& wo, int n, int* base,
-                                       float (*weights)[kChunk]) {
+  BRDF_AVX2 static void PlacesAvx2(const float* wi_x, const float* wi_y, const float* wi_z,
+                                   const Vec3f& wo, int n, int* base, float (*weights)[kChunk]) {
     PlacesOf(wi_x, wi_y, wi_z, wo, n, base, weights);
   }
 
@@ -312,14 +296,16 @@ class TabulatedMaterial : public Material {
     return LobeCoordinates{LobeFrame::kHalfVector, exponent};
   }
 
-  // The table for the lookups: a cell is one vector of four (red, green, blue, 0), so that a
-  // blend reads and weighs a corner at once, and the table has one more cell at each end of
-  // every axis (clamped copies in theta_h and theta_d, periodic ones in phi_d), so that the
-  // eight corners of any point lie at fixed offsets from the lower one, without clamps or
-  // wrap-arounds.
+  // The table for the lookups: a cell is four aligned lanes (red, green, blue, 0), so that a
+  // blend reads and weighs a corner at once (a four-lane loop the compiler vectorizes), and the
+  // table has one more cell at each end of every axis (clamped copies in theta_h and theta_d,
+  // periodic ones in phi_d), so that the eight corners of any point lie at fixed offsets from the
+  // lower one, without clamps or wrap-arounds.
   static constexpr int kPadded = kBins + 3;  // the lower corner's index runs over 0..kBins + 1
   template <typename T>
-  using Cell = typename FourLanes<T>::Vector;
+  struct alignas(4 * sizeof(T)) Cell {
+    T lane[4];
+  };
   template <typename T>
   static std::vector<Cell<T>> Padded(const std::vector<Rgb>& cells) {
     // Padded index i is cell i - 1 of the axis.
@@ -367,16 +353,14 @@ class TabulatedMaterial : public Material {
   }
   template <typename T>
   static RgbT<T> Blend(int base, const T weights[8], const std::vector<Cell<T>>& cells) {
-    using Mask = typename FourLanes<T>::Mask;
-    Cell<T> value = {};
+    T value[4] = {};
     for (int corner = 0; corner < 8; ++corner) {
       const int offset =
           (corner & 1 ? kPadded * kPadded : 0) + (corner & 2 ? kPadded : 0) + (corner & 4 ? 1 : 0);
-      const Cell<T> weight = Cell<T>{} + weights[corner];
+      const T weight = weights[corner];
+      const Cell<T>& cell = cells[base + offset];
       // A corner of weight 0 adds nothing, whatever its value (as a branch would skip it).
-      const Mask used = weight > Cell<T>{};
-      value +=
-          reinterpret_cast<Cell<T>>(reinterpret_cast<Mask>(weight * cells[base + offset]) & used);
+      for (int c = 0; c < 4; ++c) value[c] += weight > T(0) ? weight * cell.lane[c] : T(0);
     }
     return RgbT<T>(value[0], value[1], value[2]);
   }

@@ -14,7 +14,7 @@
 #include "core/format.h"
 #include "core/progress.h"
 #include "core/rng.h"
-#include "hdr/simd.h"
+#include "core/simd.h"
 #include "render/lobe_sampler.h"
 
 namespace brdf {
@@ -87,8 +87,8 @@ class EnvironmentEstimator {
   }
 
  private:
-  BRDF_HDR_AVX2 Estimate PixelAvx2(const Frame& frame, uint64_t seed, uint64_t pixel,
-                                   int64_t* missing) const {
+  BRDF_AVX2 Estimate PixelAvx2(const Frame& frame, uint64_t seed, uint64_t pixel,
+                               int64_t* missing) const {
     return PixelIn(frame, seed, pixel, missing);
   }
   BRDF_LANE_FUNCTION Estimate PixelIn(const Frame& frame, uint64_t seed, uint64_t pixel,
@@ -285,7 +285,7 @@ class EnvironmentEstimator {
   std::optional<LobeTechnique> lobe_;
   const DirectionSampler* sampler_;  // null, or the material's own (when it has no lobe)
   int spp_;
-  bool avx2_ = HdrAvx2Enabled();
+  bool avx2_ = Avx2Enabled();
 };
 
 }  // namespace

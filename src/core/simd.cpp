@@ -1,4 +1,4 @@
-#include "hdr/simd.h"
+#include "core/simd.h"
 
 #include <atomic>
 
@@ -6,7 +6,7 @@ namespace brdf {
 namespace {
 
 bool ProcessorHasAvx2() {
-#if BRDF_HDR_HAS_AVX2_PATHS
+#if BRDF_HAS_AVX2_PATHS
   return __builtin_cpu_supports("avx2");
 #else
   return false;
@@ -20,9 +20,9 @@ std::atomic<bool>& Avx2Flag() {
 
 }  // namespace
 
-bool HdrAvx2Enabled() { return Avx2Flag().load(std::memory_order_relaxed); }
+bool Avx2Enabled() { return Avx2Flag().load(std::memory_order_relaxed); }
 
-bool SetHdrAvx2Enabled(bool enabled) {
+bool SetAvx2Enabled(bool enabled) {
   return Avx2Flag().exchange(enabled && ProcessorHasAvx2(), std::memory_order_relaxed);
 }
 
