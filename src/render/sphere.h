@@ -11,8 +11,8 @@
 // luminance distribution, `spp` from the cosine distribution and, where the material's lobe is
 // narrower than the cosine resolves (its peak density of wi above eight times the cosine's),
 // `spp` from the lobe (for dense tables, which have no lobe formula, `spp` from a sampler built
-// from the table, Material::MakeSampler), combined by multiple importance sampling with the power heuristic
-// (Veach & Guibas, "Optimally combining sampling techniques for Monte Carlo rendering",
+// from the table, Material::MakeSampler), combined by multiple importance sampling with the power
+// heuristic (Veach & Guibas, "Optimally combining sampling techniques for Monte Carlo rendering",
 // SIGGRAPH 1995). The convex sphere never shadows itself, so no visibility term is needed.
 // The estimate runs in single precision (core/float_math.h, lobe_sampler.h); the directional
 // lights in double.
