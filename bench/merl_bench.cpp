@@ -2,7 +2,8 @@
 // rung and with `auto`, under each given loss, as `brdf fit FILE --model M --loss L` fits it; each
 // fit scored by the weighted log-rmse of its report and by the image error (fitters/
 // image_error.h: spheres of the table and of the fit under directional lights at 20 and 60
-// degrees, relative L1 of RGB radiance over the lit sphere), with its wall time. Run by
+// degrees, relative L1 of RGB radiance over the lit sphere; and, as image_error_back, under
+// lights at 100 and 140 degrees, behind the sphere), with its wall time. Run by
 // bench/merl_benchmark, which makes the tables and draws the chart.
 //
 // Usage: merl_bench OUT.csv LOSSES MODELS TABLE...
