@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <type_traits>
 #include <vector>
 
 #include "fitters/fit.h"
@@ -70,19 +69,6 @@ class ModelFitter {
       }
       starts = std::move(combined);
     });
-    // Two lobes of one term are interchangeable: a start and its mirror image (the lobes'
-    // shapes swapped) lead to the same optimum, so only starts with the first lobe's shape
-    // below the second's are tried (lambert+ggx+ggx: 84 starts instead of 196).
-    if constexpr (ModelType::kLobes == 2) {
-      if constexpr (std::is_same_v<typename ModelType::template Term<1>,
-                                   typename ModelType::template Term<2>>) {
-        starts.erase(std::remove_if(starts.begin(), starts.end(),
-                                    [](const FitStart& start) {
-                                      return !(start.lobes[0].shape < start.lobes[1].shape);
-                                    }),
-                     starts.end());
-      }
-    }
     if (kLobed && designed) {
       const size_t count = starts.size();
       for (size_t k = 0; k < count; ++k) {

@@ -25,7 +25,9 @@ def test_energy_verdicts_and_reasons_equal_the_cli(brdf, data_dir):
 
 def test_export_warns_when_the_renderer_loses_the_fit(data_dir, tmp_path):
     sunflower = brdfkit.read(str(data_dir / "rgl-bsdf" / "cg_sunflower_rgb.bsdf"))
-    blinn_phong = brdfkit.fit(sunflower, model="blinn-phong")
+    # l2 spends the lobe on the few samples of the sunflower's 1000 sr^-1 peak: a lobe narrower
+    # than any renderer's target holds.
+    blinn_phong = brdfkit.fit(sunflower, model="blinn-phong", loss="l2")
     with pytest.warns(UserWarning, match="differs from the fit by up to"):
         report = brdfkit.export(blinn_phong, to="gltf", samples=sunflower,
                                 out=str(tmp_path / "bp.gltf"))
