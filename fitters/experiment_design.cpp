@@ -149,9 +149,13 @@ DesignResult Choose(const Model& model, const std::vector<DesignPoint>& candidat
                      " is at a bound: there is nothing to plan for");
   }
   const size_t budget = static_cast<size_t>(options.budget);
-  if (options.budget < 1) throw UsageError("--budget must be at least 1");
+  if (options.budget < 1) {
+    throw UsageError("the measurement budget must be at least 1 geometry, got " +
+                     std::to_string(options.budget));
+  }
   if (budget > candidates.size()) {
-    throw UsageError("--budget " + std::to_string(budget) + " is larger than the candidate set (" +
+    throw UsageError("the measurement budget (" + std::to_string(budget) +
+                     " geometries) is larger than the candidate set (" +
                      std::to_string(candidates.size()) +
                      " geometries within the constraints): lower it or widen the candidates");
   }
@@ -192,8 +196,8 @@ DesignResult Choose(const Model& model, const std::vector<DesignPoint>& candidat
           "the constraints leave room for only " + std::to_string(result.chosen.size()) +
           " geometries of the " + std::to_string(candidates.size()) +
           " candidates at min_separation_deg=" + FormatNumber(options.min_separation_deg) +
-          "; --budget " + std::to_string(budget) +
-          " needs a smaller separation, wider candidates or a smaller budget");
+          "; a measurement budget of " + std::to_string(budget) +
+          " geometries needs a smaller separation, wider candidates or a smaller budget");
     }
     const auto [value, negative_index, stamp] = queue.top();
     queue.pop();

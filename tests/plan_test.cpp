@@ -254,6 +254,44 @@ TEST(Plan, DGreedyBeatsUniformLogDet) {
   EXPECT_EQ(fitters::ChooseDesign(model, candidates, design).chosen, result.chosen);
 }
 
+// The library's budget errors reach Python users as well as the command line's: they speak of
+// the measurement budget, not of a command-line flag.
+TEST(Plan, BudgetErrorsNameTheBudgetNotAFlag) {
+  const Model model = LoadModel("ggx:rho_d=0.1:f0=0.04:alpha=0.05");
+  gonio::Instrument instrument;
+  instrument.jitter_deg = 0;
+  const gonio::ModelSample sample(model, instrument);
+  const gonio::NoiseModel noise(sample, instrument);
+  const std::vector<fitters::DesignPoint> candidates =
+      Points(gonio::MakeSchedule(kCandidates), instrument, noise);
+  struct Case {
+    int budget;
+    double min_separation_deg;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+      {0, 0, "the measurement budget must be at least 1 geometry, got 0"},
+      {static_cast<int>(candidates.size()) + 1, 0,
+       "the measurement budget (" + std::to_string(candidates.size() + 1) +
+           " geometries) is larger than the candidate set (" + std::to_string(candidates.size()) +
+           " geometries"},
+      {100, 60, "; a measurement budget of 100 geometries needs a smaller separation"},
+  };
+  for (const Case& c : cases) {
+    fitters::DesignOptions design;
+    design.budget = c.budget;
+    design.min_separation_deg = c.min_separation_deg;
+    try {
+      fitters::ChooseDesign(model, candidates, design);
+      ADD_FAILURE() << "budget " << c.budget << " was accepted";
+    } catch (const UsageError& error) {
+      const std::string message = error.what();
+      EXPECT_NE(message.find(c.expected), std::string::npos) << message;
+      EXPECT_EQ(message.find("--"), std::string::npos) << message;
+    }
+  }
+}
+
 TEST(Plan, UniformScheduleHasTheCountAndStaysInside) {
   const gonio::Schedule schedule = gonio::MakeSchedule("uniform:count=500:theta_max=60");
   EXPECT_EQ(schedule.CountGeometries(), 500u);

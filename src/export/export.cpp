@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 
+#include "core/angles.h"
 #include "core/enum_names.h"
 #include "core/errors.h"
 #include "core/format.h"
@@ -36,6 +37,11 @@ constexpr size_t kRefitSamples = 1000;
 // Relative errors are taken against max(f_fit, this share of the fit's largest value): below it a
 // value is too dark for a relative difference to mean anything a renderer shows.
 constexpr double kRelativeFloorShare = 1e-3;
+// The highlight is looked for where both directions are within this angle of the normal: there
+// the renderers' masking and Fresnel stay near ours (Schlick's (1 - cos)^5 is below 0.04), so a
+// highlight lost there is the lobe's loss; toward grazing a microfacet fit's brightest values
+// are those very terms (on the bundled data, separable G put them at 0.53 of the fit's).
+constexpr double kHighlightMaxThetaDeg = 60.0;
 // The lobe-matched map tries alphas half_width_alpha * ratio^k, |k| <= steps: a factor 4 either
 // way in steps of 2^(1/4), enough to bracket a power-cosine lobe's best ggx stand-in, whose tails
 // differ from its own.
@@ -318,12 +324,28 @@ ExportError MeasureExportError(const std::function<Rgb(const Vec3&, const Vec3&)
   ExportError error;
   error.samples = samples.size();
   std::vector<Rgb> fit_values(samples.size());
-  Rgb largest = Rgb::Zero();
+  size_t highlight_sample = 0;
+  int highlight_channel = 0;
+  const double cos_highlight_max = std::cos(DegToRad(kHighlightMaxThetaDeg));
+  double largest = 0;
   for (size_t k = 0; k < samples.size(); ++k) {
     fit_values[k] = fit.Eval(samples[k].wi, samples[k].wo);
-    largest = largest.max(fit_values[k]);
+    int channel = 0;
+    const double value = fit_values[k].maxCoeff(&channel);
+    largest = std::max(largest, value);
+    if (value > error.highlight_fit && samples[k].wi.z() >= cos_highlight_max &&
+        samples[k].wo.z() >= cos_highlight_max) {
+      error.highlight_fit = value;
+      highlight_sample = k;
+      highlight_channel = channel;
+    }
   }
-  error.relative_floor = kRelativeFloorShare * largest.maxCoeff();
+  error.relative_floor = kRelativeFloorShare * largest;
+  if (error.highlight_fit > 0) {
+    error.highlight_wi = samples[highlight_sample].wi;
+    error.highlight_wo = samples[highlight_sample].wo;
+    error.highlight_renderer = renderer(error.highlight_wi, error.highlight_wo)[highlight_channel];
+  }
   double sum = 0, weight = 0;
   for (size_t k = 0; k < samples.size(); ++k) {
     const fitters::FitSample& sample = samples[k];
@@ -369,6 +391,19 @@ std::vector<std::string> ExportWarnings(const ExportError& error, double fit_log
              : std::string()) +
         (allowed == kLogRmseWarningFloor ? " and above " + Num(kLogRmseWarningFloor) : "") +
         ": the export loses more than the fit did");
+  }
+  if (error.highlight_fit > 0) {
+    const double ratio = error.highlight_renderer / error.highlight_fit;
+    if (ratio < 1.0 / kHighlightWarningFactor || ratio > kHighlightWarningFactor) {
+      warnings.push_back(
+          "at the fit's highlight (theta_i " + Num(RadToDeg(std::acos(error.highlight_wi.z()))) +
+          " deg, theta_o " + Num(RadToDeg(std::acos(error.highlight_wo.z()))) +
+          " deg) the renderer's material gives " + Num(error.highlight_renderer) +
+          " sr^-1 where the fit gives " + Num(error.highlight_fit) + " (" + Num(ratio) +
+          " times the fit's, outside 1/" + Num(kHighlightWarningFactor) + " to " +
+          Num(kHighlightWarningFactor) + "): " +
+          (ratio < 1 ? "it loses the fitted highlight" : "its highlight is brighter than fitted"));
+    }
   }
   return warnings;
 }
@@ -457,6 +492,13 @@ nlohmann::json ExportJson(const ExportedMaterial& material, const std::string& f
        {{"log_rmse", material.error.log_rmse},
         {"max_relative", material.error.max_relative},
         {"relative_floor", material.error.relative_floor},
+        {"highlight",
+         {{"fit", material.error.highlight_fit},
+          {"renderer", material.error.highlight_renderer},
+          {"theta_i_deg", RadToDeg(std::acos(material.error.highlight_wi.z()))},
+          {"theta_o_deg", RadToDeg(std::acos(material.error.highlight_wo.z()))},
+          {"phi_o_deg", RadToDeg(std::atan2(material.error.highlight_wo.y(),
+                                            material.error.highlight_wo.x()))}}},
         {"samples", material.error.samples},
         {"samples_origin", samples_origin},
         {"fit_log_rmse", material.fit_log_rmse >= 0 ? nlohmann::json(material.fit_log_rmse)
@@ -482,6 +524,8 @@ std::string ExportSummary(const ExportedMaterial& material, const std::string& o
   text += "error       log-rmse " + Num(material.error.log_rmse) + ", max relative error " +
           Num(material.error.max_relative) + " (values below " +
           Num(material.error.relative_floor) + " sr^-1 taken as that), on " + samples_origin + "\n";
+  text += "highlight   the fit's brightest value " + Num(material.error.highlight_fit) +
+          " sr^-1, the renderer's there " + Num(material.error.highlight_renderer) + "\n";
   if (material.fit_log_rmse >= 0) {
     text += "fit         log-rmse " + Num(material.fit_log_rmse) + " against the data\n";
   }

@@ -84,8 +84,9 @@ illuminant: for spectral files: "D65" or "E".
 
 Returns the CLI's --json dict plus "text", the file's contents. When the renderer's material
 differs from the fit by more than the thresholds of docs/export.md (max relative error above 10,
-or log-rmse above twice the fit's own and above 0.02), each finding is also issued as a
-UserWarning; the dict's "warnings" holds them.)doc");
+log-rmse above twice the fit's own and above 0.02, or the fit's highlight below half or above
+twice its brightness), each finding is also issued as a UserWarning; the dict's "warnings" holds
+them.)doc");
 }
 
 }  // namespace brdf::python
