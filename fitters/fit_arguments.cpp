@@ -19,6 +19,11 @@ FitOptions FitArguments::ToFitOptions(int threads) const {
   return options;
 }
 
+bool FitArguments::UsesEvaluator() const {
+  const Loss parsed = ParseLoss(loss);
+  return Automatic() || parsed == Loss::kImage || parsed == Loss::kAuto;
+}
+
 brdf::ReadOptions FitArguments::ToReadOptions() const {
   brdf::ReadOptions options;
   options.illuminant = ParseIlluminant(illuminant);

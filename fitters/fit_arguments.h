@@ -29,7 +29,7 @@ struct FitArguments {
   // Whether the fit renders a measurement that has an evaluator (Measurement::tabulated): the
   // image loss fits the pixels of its rendered spheres, and `auto` chooses by its image error
   // (select.h).
-  bool UsesEvaluator() const { return Automatic() || loss == "image" || loss == "auto"; }
+  bool UsesEvaluator() const;
   // Checks the model name (a usage error names the known ones) and the numbers.
   FitOptions ToFitOptions(int threads) const;
   brdf::ReadOptions ToReadOptions() const;

@@ -49,6 +49,25 @@ std::vector<fitters::DesignPoint> Points(const gonio::Schedule& schedule,
   return points;
 }
 
+// An instrument without positioning jitter, its noise model for `model`, and the candidate
+// geometries of kCandidates with their sigmas: the setting of the design tests.
+struct SteadyDesign {
+  static gonio::Instrument WithoutJitter() {
+    gonio::Instrument instrument;
+    instrument.jitter_deg = 0;
+    return instrument;
+  }
+  explicit SteadyDesign(const Model& model)
+      : instrument(WithoutJitter()),
+        sample(model, instrument),
+        noise(sample, instrument),
+        candidates(Points(gonio::MakeSchedule(kCandidates), instrument, noise)) {}
+  const gonio::Instrument instrument;
+  const gonio::ModelSample sample;
+  const gonio::NoiseModel noise;
+  const std::vector<fitters::DesignPoint> candidates;
+};
+
 gonio::Schedule DesignedSchedule(const std::vector<fitters::DesignPoint>& points) {
   gonio::Schedule schedule;
   schedule.spec = "file:test";
@@ -180,12 +199,10 @@ TEST(Plan, FitOfASchedulePiledOnTheLobeFindsTheDiffuseFloor) {
 // treats as independent; docs/planning.md measures what that costs.
 TEST(Plan, PredictedStderrMatchesSpreadOfFits) {
   const Model model = LoadModel("blinn-phong:rho_d=0.2:rho_s=0.5:m=300");
-  gonio::Instrument instrument;
-  instrument.jitter_deg = 0;
-  const gonio::ModelSample sample(model, instrument);
-  const gonio::NoiseModel noise(sample, instrument);
-  const std::vector<fitters::DesignPoint> candidates =
-      Points(gonio::MakeSchedule(kCandidates), instrument, noise);
+  const SteadyDesign steady(model);
+  const gonio::Instrument& instrument = steady.instrument;
+  const gonio::NoiseModel& noise = steady.noise;
+  const std::vector<fitters::DesignPoint>& candidates = steady.candidates;
   fitters::DesignOptions design;
   design.budget = 120;
   const fitters::DesignResult result = fitters::ChooseDesign(model, candidates, design);
@@ -231,12 +248,10 @@ TEST(Plan, PredictedStderrMatchesSpreadOfFits) {
 // than a plan of half the budget (its first half, by construction).
 TEST(Plan, DGreedyBeatsUniformLogDet) {
   const Model model = LoadModel("ggx:rho_d=0.1:f0=0.04:alpha=0.05");
-  gonio::Instrument instrument;
-  instrument.jitter_deg = 0;
-  const gonio::ModelSample sample(model, instrument);
-  const gonio::NoiseModel noise(sample, instrument);
-  const std::vector<fitters::DesignPoint> candidates =
-      Points(gonio::MakeSchedule(kCandidates), instrument, noise);
+  const SteadyDesign steady(model);
+  const gonio::Instrument& instrument = steady.instrument;
+  const gonio::NoiseModel& noise = steady.noise;
+  const std::vector<fitters::DesignPoint>& candidates = steady.candidates;
   fitters::DesignOptions design;
   design.budget = 200;
   const fitters::DesignResult result = fitters::ChooseDesign(model, candidates, design);
@@ -258,12 +273,8 @@ TEST(Plan, DGreedyBeatsUniformLogDet) {
 // the measurement budget, not of a command-line flag.
 TEST(Plan, BudgetErrorsNameTheBudgetNotAFlag) {
   const Model model = LoadModel("ggx:rho_d=0.1:f0=0.04:alpha=0.05");
-  gonio::Instrument instrument;
-  instrument.jitter_deg = 0;
-  const gonio::ModelSample sample(model, instrument);
-  const gonio::NoiseModel noise(sample, instrument);
-  const std::vector<fitters::DesignPoint> candidates =
-      Points(gonio::MakeSchedule(kCandidates), instrument, noise);
+  const SteadyDesign steady(model);
+  const std::vector<fitters::DesignPoint>& candidates = steady.candidates;
   struct Case {
     int budget;
     double min_separation_deg;
