@@ -1,8 +1,11 @@
 // The multi-start (DESIGN §6): local minima are real — a lobe started too broad or too sharp
 // settles on the diffuse floor or on one bright sample, and a microfacet lobe started with a
 // metal's f0 can mistake a grazing Fresnel rise for a sharp peak. Every start of
-// ModelFitter::Starts() is solved for a few iterations on a small subsample (each start only
-// has to find its basin, not its optimum); the lowest cost wins.
+// ModelFitter::Starts() is solved on a small subsample (each start only has to find its basin,
+// not its optimum); the lowest cost wins. The starts are screened first: every start gets a few
+// iterations, and only the lowest few of those continue to the full count. A two-lobe
+// composition has the product of its lobes' starts (196 for lambert+ggx+ggx); the screen
+// spends most of the time on the starts still in the running.
 #pragma once
 
 #include <tbb/parallel_for.h>
@@ -18,6 +21,14 @@
 
 namespace brdf::fitters {
 
+namespace multi_start_detail {
+// Iterations every start gets before the screen, and how many starts continue after it (at
+// least kKeptStarts, else the lowest eighth). A single lobe's starts (at most 28, with the
+// low-floor copies of a designed schedule) are never screened.
+inline constexpr int kScreenIterations = 6;
+inline constexpr size_t kKeptStarts = 28;
+}  // namespace multi_start_detail
+
 // The best start's variables over `samples` (of a `designed` schedule or not: Starts); adds the
 // iterations spent to `iterations`. Throws ComputeError when every start fails (a non-finite
 // cost).
@@ -29,24 +40,44 @@ std::vector<double> BestStart(const ModelFitter<ModelType>& fitter,
   const std::vector<FitStart> starts = fitter.Starts(designed);
   const FitObjective<ModelType> objective(samples, options.loss, options.grey_specular,
                                           options.samples_per_block);
+  const int total = std::min(options.start_iterations, options.max_iterations);
+  const bool screened = starts.size() > multi_start_detail::kKeptStarts;
+  const int screen = screened ? std::min(total, multi_start_detail::kScreenIterations) : total;
   // The starts are independent: solved side by side (each on Ceres' one thread, its batches in
   // parallel), then compared in their order, so the choice does not depend on the thread count.
   std::vector<std::vector<double>> trials(starts.size());
   std::vector<double> costs(starts.size());
   std::vector<int> start_iterations(starts.size());
+  const auto solve = [&](size_t k, int budget) {
+    const ceres::Solver::Summary summary =
+        SolveLeastSquares(objective, &trials[k], fitter.lower(), fitter.upper(), budget);
+    start_iterations[k] += static_cast<int>(summary.iterations.size());
+    costs[k] = std::isfinite(summary.final_cost) ? summary.final_cost
+                                                 : std::numeric_limits<double>::infinity();
+  };
   tbb::parallel_for(size_t{0}, starts.size(), [&](size_t k) {
     trials[k] = fitter.InitialGuess(samples, starts[k]);
-    const ceres::Solver::Summary summary =
-        SolveLeastSquares(objective, &trials[k], fitter.lower(), fitter.upper(),
-                          std::min(options.start_iterations, options.max_iterations));
-    start_iterations[k] = static_cast<int>(summary.iterations.size());
-    costs[k] = summary.final_cost;
+    solve(k, screen);
   });
+  // The screen: the lowest costs continue (ties in start order, so the set does not depend on
+  // the thread count).
+  std::vector<size_t> order(starts.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return costs[a] < costs[b]; });
+  order.resize(
+      std::min(order.size(), std::max(multi_start_detail::kKeptStarts, starts.size() / 8)));
+  if (total > screen) {
+    tbb::parallel_for(size_t{0}, order.size(), [&](size_t j) {
+      if (std::isfinite(costs[order[j]])) solve(order[j], total - screen);
+    });
+  }
   std::vector<double> best;
   double best_cost = std::numeric_limits<double>::infinity();
-  for (size_t k = 0; k < starts.size(); ++k) {
-    *iterations += start_iterations[k];
-    if (std::isfinite(costs[k]) && costs[k] < best_cost) {
+  for (size_t k = 0; k < starts.size(); ++k) *iterations += start_iterations[k];
+  std::sort(order.begin(), order.end());
+  for (size_t k : order) {
+    if (costs[k] < best_cost) {
       best_cost = costs[k];
       best = trials[k];
     }

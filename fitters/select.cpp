@@ -60,6 +60,21 @@ std::string BicReason(const ModelInfo& info, size_t index, const Selection& sele
         "to pay for its extra variables",
         winner.bic, winner.loss_rms);
   }
+  // A second lobe: the sentence compares with the earlier rung of the first lobe alone.
+  if (info.lobes.size() > 1) {
+    for (size_t k = 0; k < index; ++k) {
+      const ModelInfo& earlier = FindModel(selection.candidates[k].model);
+      if (earlier.diffuse == info.diffuse && earlier.lobes.size() == 1 &&
+          earlier.lobes.front().term == info.lobes.front().term) {
+        const CandidateScore& single = selection.candidates[k];
+        return Format(
+            "%s has the lowest BIC (%.6g; one lobe, %s, %.6g; lambert %.6g): a second %s lobe "
+            "lowers the loss's rms residual from %.4g (%s) to %.4g",
+            winner.model.c_str(), winner.bic, single.model.c_str(), single.bic, lambert.bic,
+            info.lobes[1].term.c_str(), single.loss_rms, single.model.c_str(), winner.loss_rms);
+      }
+    }
+  }
   // The best earlier rung whose lobe brings something else (a power-cosine lobe, for a
   // microfacet one): the sentence compares with it.
   const CandidateScore* other = nullptr;

@@ -685,7 +685,8 @@ TEST(FitRealData, EveryBundledFileFitsWithGgx) { ExpectPinnedMicrofacetFits("ggx
 TEST(FitRealData, EveryBundledFileFitsWithBeckmann) { ExpectPinnedMicrofacetFits("beckmann"); }
 
 // The glossy Cornell paints and the Zemax vinyl show a Fresnel rise no power-cosine lobe
-// follows: auto climbs to a microfacet rung, and says so.
+// follows: auto climbs to a microfacet rung (garnet_red's coat to a second lobe), and says so
+// with the rms residual it lowered.
 TEST(FitRealData, AutoClimbsToAMicrofacetRungOnGlossyPaintAndZemax) {
   for (const char* file :
        {"cornell-astm/garnet_red.astm", "zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf"}) {
@@ -694,7 +695,9 @@ TEST(FitRealData, AutoClimbsToAMicrofacetRungOnGlossyPaintAndZemax) {
         fitters::SelectAndFit(ReadMeasurement(testing::DataPath(file)), FitOptions{}, &selection);
     EXPECT_EQ(fit.model.info().lobes.front().shape_scale, models::ShapeScale::kRoughness)
         << selection.reason;
-    EXPECT_NE(selection.reason.find("Fresnel and masking lower the loss's rms residual"),
+    const bool one_lobe = fit.model.info().lobes.size() == 1;
+    EXPECT_NE(selection.reason.find(one_lobe ? "Fresnel and masking lower the loss's rms residual"
+                                             : "a second ggx lobe lowers the loss's rms residual"),
               std::string::npos)
         << selection.reason;
     EXPECT_EQ(fit.energy.verdict.conservation, Conservation::kConserving) << file;

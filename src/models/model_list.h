@@ -74,7 +74,7 @@ struct EonGgx : Composition<Eon, GgxLobe> {
 // back-scatter with the specular reflection of its cover.
 struct LambertGgxGgx : Composition<Lambert, GgxLobe, GgxLobe> {
   static constexpr const char* kName = "lambert+ggx+ggx";
-  static constexpr bool kAuto = false;
+  static constexpr bool kAuto = true;
 };
 struct LambertRetroGgx : Composition<Lambert, RetroLobe, GgxLobe> {
   static constexpr const char* kName = "lambert+retro+ggx";
