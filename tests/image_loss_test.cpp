@@ -9,6 +9,7 @@
 
 #include "core/errors.h"
 #include "core/measurement.h"
+#include "fitters/energy_bound.h"
 #include "fitters/fit.h"
 #include "fitters/fit_samples.h"
 #include "fitters/image_error.h"
@@ -147,6 +148,25 @@ TEST(ImageLoss, AutoChoosesByTheImageAndSaysSo) {
     EXPECT_TRUE(std::isfinite(candidate.image_error)) << candidate.model;
     if (candidate.model == "lambert") EXPECT_GT(candidate.image_error, 0.1);
   }
+  // Rendered data made by a coat over a base: the second lobe is what renders closest, and the
+  // sentence says what it bought.
+  const Model coat_over_base = ParseModel(
+      "lambert+ggx+ggx:rho_d=0.1,0.08,0.05:f0=0.1,0.06,0.03:alpha=0.3:f0_2=0.02:"
+      "alpha_2=0.05");
+  // Inside the fit's energy bound (a model beyond it cannot be recovered).
+  ASSERT_LT(fitters::EnergyBound(coat_over_base).maxCoeff(), 1.0);
+  const Measurement coated = ModelAsMeasurement(coat_over_base, "coated");
+  fitters::Selection coated_selection;
+  const fitters::FitResult coated_fit = fitters::SelectAndFit(coated, options, &coated_selection);
+  EXPECT_EQ(coated_fit.model.name(), "lambert+ggx+ggx") << coated_selection.reason;
+  double single_lobe_error = 0;
+  for (const fitters::CandidateScore& candidate : coated_selection.candidates) {
+    if (candidate.model == "ggx") single_lobe_error = candidate.image_error;
+    if (candidate.model == "lambert+ggx+ggx") {
+      EXPECT_LT(candidate.image_error, 1e-3) << coated_fit.model.ToString();
+    }
+  }
+  EXPECT_GT(single_lobe_error, 0.02) << coated_selection.reason;
 }
 
 }  // namespace
