@@ -565,8 +565,8 @@ TEST(Registry, ListsTheModelsOfDesignInOrder) {
   std::vector<std::string> names;
   for (const ModelInfo& info : ModelRegistry()) names.push_back(info.name);
   EXPECT_EQ(names, (std::vector<std::string>{"lambert", "phong", "blinn-phong", "blinn-phong-exact",
-                                             "ggx", "beckmann", "lambert+retro", "eon", "eon+ggx", "ggx-aniso",
-                                             "lambert+ggx+ggx", "lambert+retro+ggx"}));
+                                             "ggx", "beckmann", "lambert+retro", "eon", "eon+ggx",
+                                             "ggx-aniso", "lambert+ggx+ggx", "lambert+retro+ggx"}));
   // The ladder `--model auto` climbs is the first six.
   for (size_t k = 0; k < names.size(); ++k) EXPECT_EQ(ModelRegistry()[k].auto_candidate, k < 6);
 }

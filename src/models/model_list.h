@@ -88,9 +88,9 @@ struct LambertRetroGgx : Composition<Lambert, RetroLobe, GgxLobe> {
   static constexpr bool kAuto = false;
 };
 
-using AllModels = TypeList<LambertModel, Phong, BlinnPhong, BlinnPhongExact, Ggx, Beckmann,
-                           LambertRetro, EonModel, EonGgx, GgxAniso, LambertGgxGgx,
-                           LambertRetroGgx>;
+using AllModels =
+    TypeList<LambertModel, Phong, BlinnPhong, BlinnPhongExact, Ggx, Beckmann, LambertRetro,
+             EonModel, EonGgx, GgxAniso, LambertGgxGgx, LambertRetroGgx>;
 
 // Calls f(M{}) for every type of the list, in order.
 template <typename F, typename... Types>
