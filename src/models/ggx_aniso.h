@@ -269,7 +269,8 @@ struct GgxAnisoLobe {
   // a smooth function of (a, b) through the isotropic point a = b = 0, where the direction is
   // undefined: near it, the fit's gradient points toward the data's direction of anisotropy
   // whatever it is, where a start along any one fixed direction (phi0 = 0) would sit on a saddle
-  // for data symmetric about the diagonal. Only the point a = b = 0 itself has no derivative
+  // for data symmetric about the diagonal. (The energy bound is not smooth there: it depends on
+  // r = |(a, b)|, and through the budget so does rho_d.) Only the point a = b = 0 has no derivative
   // (phi0 there is undefined): starts and the inverse map sit a hair away from it
   // (kStartAnisotropy), and the fit does not land on it by chance. Each alpha stays within the
   // fitter's range of microfacet roughness, that of the tabulated bound (a box on (m, a, b)
