@@ -6,6 +6,7 @@
 #include <exception>
 #include <iostream>
 #include <string>
+#include <type_traits>
 
 #include "core/atomic_file.h"
 #include "core/format.h"
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
     brdf::models::ForEachTerm([&](auto term) {
       using M = decltype(term);
       if constexpr (M::kTabulatedBound) {
+        // A term bounded by another term's table (AlbedoTableTerm) has none of its own.
+        if (!std::is_same_v<typename M::AlbedoTableTerm, M>) return;
         const MicrofacetAlbedoTable table(brdf::FindModel(M::kName));
         const std::string id = Identifier(M::kName);
         tables += "// " + std::string(M::kName) + ": E0 at every node, then E1.\nconst double " +

@@ -114,11 +114,12 @@ class ModelFitter {
     double budget[3] = {1, 1, 1};
     ModelType::ForEachLobe([&](auto lobe, auto index) {
       using Lobe = decltype(lobe);
-      double variables[4], taken[3];
+      // The lobe's variables in their three-channel layout (models/term.h: Guess).
+      double variables[FitVariables::kMaxVariables], taken[3];
       Lobe::Guess(peak, start.lobes[index - 1], budget, TabulatedBound<Lobe>(), variables, taken);
       for (int c = 0; c < 3; ++c) budget[c] = std::max(budget[c] - taken[c], 0.0);
       const bool grey = VariableLayout<ModelType>::Grey(index, options_.grey_specular);
-      models::PackShares(variables, variables[3], grey, x.data() + offsets[index]);
+      models::PackVariables(variables, Lobe::NumVariables(false), grey, x.data() + offsets[index]);
     });
     ModelType::DiffuseTerm::Guess(rho_d, budget, x.data());
     return x;

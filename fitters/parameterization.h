@@ -49,12 +49,13 @@ struct FitVariables {
 };
 
 // The tabulated bound of a lobe term (its Map's `bound`): the largest albedo over incidence of
-// AlbedoTableOf<Term>. Only terms whose bound is tabulated (kTabulatedBound) call it.
+// the table the term names (AlbedoTableTerm: its own, or another term's, e.g. ggx-aniso's is
+// ggx's). Only terms whose bound is tabulated (kTabulatedBound) call it.
 template <typename Term>
 struct TabulatedBound {
   template <typename T>
   T MaxAlbedo(const T& log_shape, const T& p) const {
-    return AlbedoTableOf<Term>().MaxLobeAlbedo(log_shape, p);
+    return AlbedoTableOf<typename Term::AlbedoTableTerm>().MaxLobeAlbedo(log_shape, p);
   }
 };
 

@@ -26,6 +26,7 @@ SurfaceSpec ReadSurfaceSpec(const std::string& path) {
   top.Object("heightfield", [&](JsonFields& field) {
     field.Text("kind", &spec.heightfield.kind);
     field.Number("rms_slope", &spec.heightfield.rms_slope);
+    field.Number("rms_slope_y", &spec.heightfield.rms_slope_y);
     field.Integer("resolution", &spec.heightfield.resolution);
     field.Integer("seed", &spec.heightfield.seed);
     field.Number("correlation", &spec.heightfield.correlation);

@@ -5,8 +5,8 @@
 //
 // FILE.json (every field optional):
 //   { "heightfield": { "kind": "flat" | "gaussian" | "v-grooves" | "file",
-//                      "rms_slope": 0.3, "resolution": 256, "seed": 1, "correlation": 4,
-//                      "period": 16, "path": "height.exr" },
+//                      "rms_slope": 0.3, "rms_slope_y": 0.3, "resolution": 256, "seed": 1,
+//                      "correlation": 4, "period": 16, "path": "height.exr" },
 //     "base": "lambert:rho_d=0.8" | "conductor:ior=N:k=K" | "dielectric:ior=N",
 //     "bounces": 8, "rays_per_incidence": 1000000 }
 // A relative "path" is resolved against the JSON file's directory.

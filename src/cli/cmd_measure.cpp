@@ -34,7 +34,10 @@ Command AddMeasureCommand(CLI::App& parent) {
       "byte for byte the one a run without mpirun writes (--threads then applies per rank).");
   app->add_option("--sample", options->sample,
                   "model:MODEL (flat analytic sample; MODEL is a model string or FIT.json), "
-                  "surface:FILE.json (ray-traced micro-geometry, see data/surfaces/) or "
+                  "surface:FILE.json (ray-traced micro-geometry, see data/surfaces/; its "
+                  "heightfield's rms_slope is the Gaussian field's slope, Beckmann's alpha, and "
+                  "rms_slope_y, default rms_slope, makes it anisotropic: rms_slope along x, "
+                  "rms_slope_y along y) or "
                   "sphere:MODEL (image-based: a camera views a rasterized sphere)")
       ->required();
   app->add_option("--schedule", options->schedule,

@@ -188,10 +188,20 @@ class LobeIntegrand {
     // half-vector Jacobian) is a low-degree trigonometric polynomial in phi, which one 15-point
     // Kronrod rule (degree 23) integrates to about 1e-12 even over a whole ring; the embedded
     // Gauss rule (degree 13) is much rougher, so |K - G| overstates this error.
-    const RuleResult arc = ApplyGaussKronrod15(on_ring, -half_width, half_width);
-    evaluations_ += arc.evaluations;
-    Quantities ring = arc.kronrod;
-    ring[kInnerError] = ColourError(arc).maxCoeff();
+    // A lobe that is not constant on its rings (models/lobe.h: ring_panels) gets the rule on
+    // equal panels of the arc.
+    Quantities ring = Quantities::Zero();
+    double inner_error = 0;
+    const int panels = std::max(1, lobe_.ring_panels);
+    for (int k = 0; k < panels; ++k) {
+      const double start = -half_width + 2.0 * half_width * k / panels;
+      const double end = -half_width + 2.0 * half_width * (k + 1) / panels;
+      const RuleResult arc = ApplyGaussKronrod15(on_ring, start, end);
+      evaluations_ += arc.evaluations;
+      ring += arc.kronrod;
+      inner_error += ColourError(arc).maxCoeff();
+    }
+    ring[kInnerError] = inner_error;
     if (lobe_.distribution == nullptr) return ring * (cos_beta / ((lobe_.exponent + 1.0) * u));
     const double density = LobeDensity(lobe_, cos_beta);
     if (!(density > 0.0)) return Quantities::Zero();

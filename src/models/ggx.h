@@ -35,8 +35,15 @@ struct GgxLobe : MicrofacetLobe<GgxLobe> {
 
   template <typename T, typename Dir>
   static T Lambda(const Dir& cos_theta, const T& alpha) {
+    return LambdaOfRoughSlope(alpha * alpha * T(TanSquared(cos_theta)));
+  }
+  // Λ from α² tan²theta: the surface's slope variance along the direction's azimuth over its
+  // cotangent squared. An anisotropic surface projects its two alphas on the azimuth (Heitz 2014,
+  // eq. 80: α(φ)² = cos²φ α_x² + sin²φ α_y²), so ggx_aniso.h calls this with its own product.
+  template <typename T>
+  static T LambdaOfRoughSlope(const T& alpha2_tan2) {
     using std::sqrt;
-    return (sqrt(T(1) + alpha * alpha * T(TanSquared(cos_theta))) - T(1)) * T(0.5);
+    return (sqrt(T(1) + alpha2_tan2) - T(1)) * T(0.5);
   }
 
   // The half-vector density D cos(theta_h): mass beyond theta_h is α²/(α² + tan²theta_h).
@@ -59,20 +66,25 @@ struct GgxLobe : MicrofacetLobe<GgxLobe> {
   // from wo), draw a point on the projected disk with the part hidden behind the hemisphere's
   // rim folded onto the visible part, lift it to the hemisphere and unstretch the normal.
   // Templated like Density. The stretched view and its tangent frame depend on wo alone: a
-  // batch of draws for one wo shares them.
+  // batch of draws for one wo shares them. The stretch may differ along x and y (an anisotropic
+  // surface, ggx_aniso.h, in its own tangent frame): the paper's method is written for both.
   template <typename T>
   struct VisibleNormalFrame {
     Vec3T<T> view, t1, t2;
-    T alpha;
+    T alpha_x, alpha_y;
   };
   template <typename T>
   static VisibleNormalFrame<T> VisibleNormalFrameOf(const Vec3T<T>& wo, T alpha) {
+    return VisibleNormalFrameOf(wo, alpha, alpha);
+  }
+  template <typename T>
+  static VisibleNormalFrame<T> VisibleNormalFrameOf(const Vec3T<T>& wo, T alpha_x, T alpha_y) {
     using std::sqrt;
-    const Vec3T<T> view = Vec3T<T>(alpha * wo.x(), alpha * wo.y(), wo.z()).normalized();
+    const Vec3T<T> view = Vec3T<T>(alpha_x * wo.x(), alpha_y * wo.y(), wo.z()).normalized();
     const T length2 = view.x() * view.x() + view.y() * view.y();
     const Vec3T<T> t1 =
         length2 > T(0) ? Vec3T<T>(-view.y(), view.x(), T(0)) / sqrt(length2) : Vec3T<T>(1, 0, 0);
-    return {view, t1, view.cross(t1), alpha};
+    return {view, t1, view.cross(t1), alpha_x, alpha_y};
   }
   // sin and cos of the turn u1 (phi = 2 pi u1): libm's in double, the branch-free polynomial
   // (core/float_math.h) in float, so that a batch of draws vectorizes.
@@ -95,7 +107,7 @@ struct GgxLobe : MicrofacetLobe<GgxLobe> {
     // Divided by its length without Eigen's test for a zero vector (normalized()), which would
     // keep a batch of draws scalar: the length is at least cos(theta_h) > 0 for wo above the
     // surface.
-    const Vec3T<T> unstretched(frame.alpha * normal.x(), frame.alpha * normal.y(),
+    const Vec3T<T> unstretched(frame.alpha_x * normal.x(), frame.alpha_y * normal.y(),
                                std::max(T(0), normal.z()));
     return unstretched / sqrt(unstretched.squaredNorm());
   }

@@ -66,6 +66,10 @@ struct LobeCoordinates {
   LobeFrame frame = LobeFrame::kNormal;
   double exponent = 1.0;
   const LobeDistribution* distribution = nullptr;  // nullptr: the power cosine
+  // Panels of the quadrature's azimuthal rule on each ring about the axis: 1 for a lobe that is
+  // rotationally symmetric about it (constant on every ring); more for one that is not, whose
+  // value varies along a ring as fast as its widths differ (ggx-aniso).
+  int ring_panels = 1;
 };
 
 // The lobe's warp, its inverse and its density, whatever the distribution.

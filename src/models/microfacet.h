@@ -90,6 +90,8 @@ struct MicrofacetLobe {
   // Whether the energy bound is tabulated by the fitter (fitters/microfacet_bound.h) rather
   // than closed-form.
   static constexpr bool kTabulatedBound = true;
+  // The term whose table it is: its own (a lobe bounded by another's table names that one).
+  using AlbedoTableTerm = Derived;
   // Entries of ValueAndGradient's gradient per channel: one per row of the parameter table.
   static constexpr int kGradientSize = 2;
   // f0 = 0 still leaves Schlick's rise toward grazing: the lobe never vanishes.

@@ -14,6 +14,7 @@
 #include "models/composition.h"
 #include "models/eon.h"
 #include "models/ggx.h"
+#include "models/ggx_aniso.h"
 #include "models/lambert.h"
 #include "models/phong.h"
 #include "models/retro.h"
@@ -25,7 +26,7 @@ struct TypeList {};
 
 // Every term, diffuse terms first.
 using AllTerms = TypeList<Lambert, Eon, PhongLobe, BlinnPhongLobe, BlinnPhongExactLobe, GgxLobe,
-                          BeckmannLobe, RetroLobe>;
+                          BeckmannLobe, RetroLobe, GgxAnisoLobe>;
 
 // The named models. kName is what a model string and a report call it (the shorthand of DESIGN
 // §2: `ggx` = lambert+ggx), kAuto whether `--model auto` climbs it, in this order (the ladder,
@@ -70,6 +71,12 @@ struct EonGgx : Composition<Eon, GgxLobe> {
   static constexpr bool kAuto = false;
 };
 
+// An anisotropic lobe (brushed metals): `ggx-aniso` is lambert+ggx-aniso, as `ggx` is lambert+ggx.
+struct GgxAniso : Composition<Lambert, GgxAnisoLobe> {
+  static constexpr const char* kName = "ggx-aniso";
+  static constexpr bool kAuto = false;
+};
+
 // Two lobes: a base lobe under a clear coat (the coat's f0 grey), and a retro-reflector's
 // back-scatter with the specular reflection of its cover.
 struct LambertGgxGgx : Composition<Lambert, GgxLobe, GgxLobe> {
@@ -81,8 +88,9 @@ struct LambertRetroGgx : Composition<Lambert, RetroLobe, GgxLobe> {
   static constexpr bool kAuto = false;
 };
 
-using AllModels = TypeList<LambertModel, Phong, BlinnPhong, BlinnPhongExact, Ggx, Beckmann,
-                           LambertRetro, EonModel, EonGgx, LambertGgxGgx, LambertRetroGgx>;
+using AllModels =
+    TypeList<LambertModel, Phong, BlinnPhong, BlinnPhongExact, Ggx, Beckmann, LambertRetro,
+             EonModel, EonGgx, GgxAniso, LambertGgxGgx, LambertRetroGgx>;
 
 // Calls f(M{}) for every type of the list, in order.
 template <typename F, typename... Types>

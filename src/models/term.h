@@ -96,6 +96,18 @@ inline void LobeVariableBounds(bool grey, double shape_min, double shape_max, do
   upper[shares] = std::log(shape_max);
 }
 
+// A lobe's variables from the three-channel layout of its Guess (s[3], then `count` - 3 more):
+// for a grey lobe the shares' mean, then the rest.
+inline void PackVariables(const double* three_channel, int count, bool grey, double* variables) {
+  const int shares = grey ? 1 : 3;
+  if (grey) {
+    variables[0] = (three_channel[0] + three_channel[1] + three_channel[2]) / 3.0;
+  } else {
+    for (int c = 0; c < 3; ++c) variables[c] = three_channel[c];
+  }
+  for (int k = 3; k < count; ++k) variables[shares + k - 3] = three_channel[k];
+}
+
 // A lobe's variables from its per-channel shares s[3] and its shape: s[0..2] then the shape, or
 // for a grey lobe (one share for all channels) their mean, then the shape.
 inline void PackShares(const double* s, double shape, bool grey, double* variables) {
