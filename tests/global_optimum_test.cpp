@@ -97,3 +97,62 @@ INSTANTIATE_TEST_SUITE_P(
 
 }  // namespace
 }  // namespace brdf
+
+namespace brdf {
+namespace {
+
+// The second lobe: on the files without an evaluator (whose fits are quick), lambert+ggx+ggx's
+// default fit (its 196 starts screened, on a subsample) against the lowest cost over every pair
+// of distinct widths of a grid of kTwoLobeGridPerDecade, each pair solved to convergence from all
+// its starts (both orders, each lobe read from the peak or not) on every sample.
+constexpr int kTwoLobeGridPerDecade = 2;
+
+class GlobalOptimumTwoLobes : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GlobalOptimumTwoLobes, DefaultFitIsWithinOnePercentOfAnExhaustiveSearch) {
+  const Measurement measurement = ReadMeasurement(testing::DataPath(GetParam()));
+  FitOptions options;
+  options.loss = fitters::ResolveLoss(fitters::Loss::kAuto, measurement);
+  const PreparedSamples prepared = fitters::PrepareSamples(measurement, options.loss);
+  const double fitted = FitPreparedSamples(prepared, "lambert+ggx+ggx", options).final_cost;
+  const LobeInfo& lobe = FindModel("lambert+ggx+ggx").lobes.front();
+  std::vector<double> grid;
+  for (double alpha = lobe.fit_shape_min; alpha <= lobe.fit_shape_max * 1.0001;
+       alpha *= std::pow(10.0, 1.0 / kTwoLobeGridPerDecade)) {
+    grid.push_back(alpha);
+  }
+  double lowest = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < grid.size(); ++i) {
+    for (size_t j = i + 1; j < grid.size(); ++j) {
+      FitOptions search = options;
+      search.max_samples = 0;
+      search.start_iterations = search.max_iterations;
+      search.start_alphas = {grid[i], grid[j]};
+      const double cost = FitPreparedSamples(prepared, "lambert+ggx+ggx", search).final_cost;
+      if (std::isfinite(cost)) lowest = std::min(lowest, cost);
+    }
+  }
+  EXPECT_LE(fitted, lowest * 1.01) << GetParam() << ": the default fit's cost " << fitted
+                                   << ", the exhaustive search's " << lowest;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BundledFiles, GlobalOptimumTwoLobes,
+    ::testing::Values("cornell-astm/acryl_blue.astm", "cornell-astm/cayman.astm",
+                      "cornell-astm/garnet_red.astm", "cornell-astm/krylon_blue.astm",
+                      "cornell-pbrt-v2/mystique.brdf",
+                      "zemax-bsdf/test_13_planesymmetric_brdf_zemax.bsdf",
+                      "alta-retro/retro-3M-jaune.dat", "alta-retro/retro-gray-tape.dat",
+                      "gonio-csv/test_brdf_viewer_2D_data.csv"),
+    [](const ::testing::TestParamInfo<const char*>& info) {
+      std::string name = info.param;
+      name = name.substr(name.find('/') + 1);
+      name = name.substr(0, name.find('.'));
+      for (char& c : name) {
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      }
+      return name;
+    });
+
+}  // namespace
+}  // namespace brdf
