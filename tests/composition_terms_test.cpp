@@ -26,6 +26,7 @@
 #include "fitters/residual.h"
 #include "models/model_list.h"
 #include "models/model_string.h"
+#include "objective_rows.h"
 #include "test_util.h"
 
 namespace brdf {
@@ -47,39 +48,6 @@ Measurement TermReadings(const Model& model, double relative, uint64_t seed = 3)
   return measurement;
 }
 
-// The objective's rows as a Ceres cost function (for the gradient checker) and the autodiff
-// residual with its one parameter block (the reference).
-template <typename M>
-class TermObjectiveRows : public ceres::CostFunction {
- public:
-  explicit TermObjectiveRows(const fitters::FitObjective<M>& objective) : objective_(objective) {
-    mutable_parameter_block_sizes()->push_back(objective.NumVariables());
-    set_num_residuals(3 * static_cast<int>(objective.samples().size()));
-  }
-  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
-    const int n = objective_.NumVariables();
-    objective_.ForEachRow(objective_.At(x[0]),
-                          [&](int64_t row, const Eigen::VectorXd& jacobian, double residual) {
-                            residuals[row] = residual;
-                            if (jacobians != nullptr && jacobians[0] != nullptr) {
-                              for (int k = 0; k < n; ++k) jacobians[0][row * n + k] = jacobian[k];
-                            }
-                          });
-    return true;
-  }
-
- private:
-  const fitters::FitObjective<M>& objective_;
-};
-template <typename M>
-struct TermDynamicResidual {
-  fitters::BatchResidual<M> residual;
-  template <typename T>
-  bool operator()(T const* const* x, T* residuals) const {
-    return residual(x[0], residuals);
-  }
-};
-
 // The closed-form Jacobian of composition M's objective at the variables `x` agrees with
 // automatic differentiation to round-off and with finite differences (GradientChecker), for
 // every loss.
@@ -99,9 +67,10 @@ void ExpectTermJacobianMatches(const char* truth_text, const std::vector<double>
     const fitters::FitObjective<M> objective(samples, loss, false);
     const int n = objective.NumVariables();
     ASSERT_EQ(static_cast<int>(x.size()), n);
-    const TermObjectiveRows<M> analytic(objective);
-    ceres::DynamicAutoDiffCostFunction<TermDynamicResidual<M>> automatic(
-        new TermDynamicResidual<M>{fitters::BatchResidual<M>(false, loss, samples.data(), count)});
+    const testing::ObjectiveRows<M> analytic(objective);
+    ceres::DynamicAutoDiffCostFunction<testing::DynamicBatchResidual<M>> automatic(
+        new testing::DynamicBatchResidual<M>{
+            fitters::BatchResidual<M>(false, loss, samples.data(), count)});
     automatic.AddParameterBlock(n);
     automatic.SetNumResiduals(3 * count);
     const double* blocks[] = {x.data()};

@@ -25,6 +25,7 @@
 #include "io/formats.h"
 #include "models/model_source.h"
 #include "models/model_string.h"
+#include "objective_rows.h"
 #include "test_util.h"
 
 namespace brdf {
@@ -332,16 +333,6 @@ std::vector<double> TestPoint(bool grey) {
   }
 }
 
-// BatchResidual with its one parameter block, for ceres::DynamicAutoDiffCostFunction.
-template <typename M>
-struct DynamicResidual {
-  fitters::BatchResidual<M> residual;
-  template <typename T>
-  bool operator()(T const* const* x, T* residuals) const {
-    return residual(x[0], residuals);
-  }
-};
-
 // The residual's automatic derivatives agree with finite differences through the
 // parameterization (ceres::GradientChecker).
 TEST(Fit, ResidualGradientsMatchFiniteDifferences) {
@@ -363,32 +354,6 @@ TEST(Fit, ResidualGradientsMatchFiniteDifferences) {
   ceres::GradientChecker::ProbeResults results;
   EXPECT_TRUE(checker.Probe(blocks, 1e-6, &results)) << results.error_log;
 }
-
-// The objective's rows (objective.h: residuals and Jacobian rows from the terms' closed-form
-// derivatives and the parameterization's Jets), as a Ceres cost function, for the gradient
-// checker.
-template <typename M>
-class ObjectiveRows : public ceres::CostFunction {
- public:
-  explicit ObjectiveRows(const fitters::FitObjective<M>& objective) : objective_(objective) {
-    mutable_parameter_block_sizes()->push_back(objective.NumVariables());
-    set_num_residuals(3 * static_cast<int>(objective.samples().size()));
-  }
-  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
-    const int n = objective_.NumVariables();
-    objective_.ForEachRow(objective_.At(x[0]),
-                          [&](int64_t row, const Eigen::VectorXd& jacobian, double residual) {
-                            residuals[row] = residual;
-                            if (jacobians != nullptr && jacobians[0] != nullptr) {
-                              for (int k = 0; k < n; ++k) jacobians[0][row * n + k] = jacobian[k];
-                            }
-                          });
-    return true;
-  }
-
- private:
-  const fitters::FitObjective<M>& objective_;
-};
 
 // The objective's closed-form Jacobian, for every loss, with one or three specular variables
 // and lobes from broad to sharp: its residuals are BatchResidual's to round-off, its Jacobian
@@ -414,10 +379,11 @@ void ExpectObjectiveJacobianMatches(const char* truth_text) {
       const std::vector<fitters::FitSample> samples(prepared.samples.begin() + 50,
                                                     prepared.samples.begin() + 50 + count);
       const fitters::FitObjective<M> objective(samples, loss, grey);
-      const ObjectiveRows<M> analytic(objective);
+      const testing::ObjectiveRows<M> analytic(objective);
       const int n = objective.NumVariables();
-      ceres::DynamicAutoDiffCostFunction<DynamicResidual<M>> automatic(
-          new DynamicResidual<M>{fitters::BatchResidual<M>(grey, loss, samples.data(), count)});
+      ceres::DynamicAutoDiffCostFunction<testing::DynamicBatchResidual<M>> automatic(
+          new testing::DynamicBatchResidual<M>{
+              fitters::BatchResidual<M>(grey, loss, samples.data(), count)});
       automatic.AddParameterBlock(n);
       automatic.SetNumResiduals(3 * count);
       for (const double m : shapes) {

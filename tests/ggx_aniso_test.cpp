@@ -36,6 +36,7 @@
 #include "fitters/residual.h"
 #include "models/model_list.h"
 #include "models/model_string.h"
+#include "objective_rows.h"
 #include "test_util.h"
 
 namespace brdf {
@@ -458,38 +459,6 @@ Measurement AnisoReadings(const Model& model, double relative, uint64_t seed) {
   return measurement;
 }
 
-// The objective's rows as a Ceres cost function (for the gradient checker) and the autodiff
-// residual with its one parameter block (the reference), as composition_terms_test.cpp has them.
-class AnisoObjectiveRows : public ceres::CostFunction {
- public:
-  explicit AnisoObjectiveRows(const fitters::FitObjective<GgxAniso>& objective)
-      : objective_(objective) {
-    mutable_parameter_block_sizes()->push_back(objective.NumVariables());
-    set_num_residuals(3 * static_cast<int>(objective.samples().size()));
-  }
-  bool Evaluate(double const* const* x, double* residuals, double** jacobians) const override {
-    const int n = objective_.NumVariables();
-    objective_.ForEachRow(objective_.At(x[0]),
-                          [&](int64_t row, const Eigen::VectorXd& jacobian, double residual) {
-                            residuals[row] = residual;
-                            if (jacobians != nullptr && jacobians[0] != nullptr) {
-                              for (int k = 0; k < n; ++k) jacobians[0][row * n + k] = jacobian[k];
-                            }
-                          });
-    return true;
-  }
-
- private:
-  const fitters::FitObjective<GgxAniso>& objective_;
-};
-struct AnisoDynamicResidual {
-  fitters::BatchResidual<GgxAniso> residual;
-  template <typename T>
-  bool operator()(T const* const* x, T* residuals) const {
-    return residual(x[0], residuals);
-  }
-};
-
 // The closed-form Jacobian of the objective (the terms' ValueAndGradient through the map's Jets)
 // against automatic differentiation of the templated residual and against Ridders' differences,
 // for every loss, at an anisotropic point and at one near isotropy (r = 0.011: the bound depends
@@ -509,9 +478,10 @@ TEST(GgxAnisoFit, ObjectiveJacobianMatchesAutomaticAndFiniteDifferences) {
       const fitters::FitObjective<GgxAniso> objective(samples, loss, false);
       const int n = objective.NumVariables();
       ASSERT_EQ(static_cast<int>(x.size()), n);
-      const AnisoObjectiveRows analytic(objective);
-      ceres::DynamicAutoDiffCostFunction<AnisoDynamicResidual> automatic(new AnisoDynamicResidual{
-          fitters::BatchResidual<GgxAniso>(false, loss, samples.data(), count)});
+      const testing::ObjectiveRows<GgxAniso> analytic(objective);
+      ceres::DynamicAutoDiffCostFunction<testing::DynamicBatchResidual<GgxAniso>> automatic(
+          new testing::DynamicBatchResidual<GgxAniso>{
+              fitters::BatchResidual<GgxAniso>(false, loss, samples.data(), count)});
       automatic.AddParameterBlock(n);
       automatic.SetNumResiduals(3 * count);
       const double* blocks[] = {x.data()};

@@ -22,6 +22,7 @@
 #include "gonio/model_sample.h"
 #include "gonio/schedule.h"
 #include "models/model_source.h"
+#include "objective_rows.h"
 #include "test_util.h"
 
 namespace brdf {
@@ -87,15 +88,6 @@ TEST(InstrumentFit, ForwardModelIsTheInstrumentsReading) {
   }
 }
 
-template <typename M>
-struct NodeResidual {
-  fitters::BatchResidual<M> residual;
-  template <typename T>
-  bool operator()(T const* const* x, T* residuals) const {
-    return residual(x[0], residuals);
-  }
-};
-
 // The aperture-averaged objective's closed-form Jacobian (objective.h, summed over nodes)
 // against automatic differentiation of the same residuals (residual.h with nodes), for every
 // loss, on a lobe's core and flanks.
@@ -116,8 +108,9 @@ TEST(InstrumentFit, ApertureAveragedJacobianMatchesAutodiff) {
                                                  fitters::FitObjective<M>::kDefaultBatch, &nodes);
         const int n = objective.NumVariables();
         const int count = static_cast<int>(samples.size()), rows = 3 * count;
-        ceres::DynamicAutoDiffCostFunction<NodeResidual<M>> automatic(new NodeResidual<M>{
-            fitters::BatchResidual<M>(false, loss, samples.data(), count, &nodes, 0)});
+        ceres::DynamicAutoDiffCostFunction<testing::DynamicBatchResidual<M>> automatic(
+            new testing::DynamicBatchResidual<M>{
+                fitters::BatchResidual<M>(false, loss, samples.data(), count, &nodes, 0)});
         automatic.AddParameterBlock(n);
         automatic.SetNumResiduals(rows);
         // At the truth and away from it (a wider lobe, other shares).

@@ -15,6 +15,7 @@
 #include "models/composition.h"
 #include "models/lambert.h"
 #include "models/model_list.h"
+#include "objective_rows.h"
 #include "test_util.h"
 
 namespace brdf {
@@ -147,15 +148,6 @@ struct BackscatterLobe {
 
 using LambertBackscatter = models::Composition<models::Lambert, BackscatterLobe>;
 
-// The autodiff residual with its one parameter block, for ceres::DynamicAutoDiffCostFunction.
-struct BackscatterResidual {
-  fitters::BatchResidual<LambertBackscatter> residual;
-  template <typename T>
-  bool operator()(T const* const* variables, T* residuals) const {
-    return residual(variables[0], residuals);
-  }
-};
-
 // Readings of `model` over a grid of incidences and outgoing directions, the retro direction
 // among them.
 Measurement Readings(const Model& model) {
@@ -207,8 +199,10 @@ TEST(NewTerm, ObjectiveJacobianMatchesAutomaticDifferentiation) {
                                                 prepared.samples.begin() + 200);
   const fitters::FitObjective<LambertBackscatter> objective(samples, fitters::Loss::kLog, false);
   const std::vector<double> x = {0.1, -0.3, 0.5, -1.0, -0.4, 0.2, std::log(12.0)};
-  ceres::DynamicAutoDiffCostFunction<BackscatterResidual> automatic(new BackscatterResidual{
-      fitters::BatchResidual<LambertBackscatter>(false, fitters::Loss::kLog, samples.data(), 200)});
+  ceres::DynamicAutoDiffCostFunction<testing::DynamicBatchResidual<LambertBackscatter>> automatic(
+      new testing::DynamicBatchResidual<LambertBackscatter>{
+          fitters::BatchResidual<LambertBackscatter>(false, fitters::Loss::kLog, samples.data(),
+                                                     200)});
   automatic.AddParameterBlock(7);
   automatic.SetNumResiduals(600);
   std::vector<double> residuals(600), jacobian(600 * 7);
