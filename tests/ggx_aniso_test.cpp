@@ -25,6 +25,7 @@
 #include "core/errors.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "direction_chi_square.h"
 #include "energy/albedo.h"
 #include "energy/lobe_quadrature.h"
 #include "energy/model_terms.h"
@@ -181,76 +182,20 @@ TEST(GgxAniso, JetDerivativesMatchTheGradientChecker) {
 
 // ---- sampling -------------------------------------------------------------------------------
 
-// Chi-square test of the visible-normal sampler against its density, in the manner of
-// microfacet_test.cpp (pbrt-v4's bsdfs_test.cpp): wi = Reflect(wo, h) with h drawn by
-// SampleVisibleNormal, binned in (cos theta, phi); each bin's expected count is the density of wi,
-// D_wo(h) / (4 wo.h), integrated over the bin by Simpson's rule (5 x 5 points); draws below the
-// horizon form one more bin. Bins expecting fewer than 5 are pooled; the statistic becomes a
-// z-score by the Wilson-Hilferty cube-root approximation.
+// Chi-square test (direction_chi_square.h) of wi = Reflect(wo, h), h drawn by
+// SampleVisibleNormal, against the density of wi, D_wo(h) / (4 wo.h).
 double AnisoSamplerChiSquareZ(const double* params, const Vec3& wo, int samples) {
-  constexpr int kCosBins = 40, kPhiBins = 80;
-  std::vector<double> observed(kCosBins * kPhiBins + 1, 0.0);
-  Rng random(0, 13);
-  for (int k = 0; k < samples; ++k) {
-    const Point2 u = random.Uniform2D();
-    const Vec3 wi = Reflect(wo, GgxAnisoLobe::SampleVisibleNormal(params, wo, u.x(), u.y()));
-    if (!(wi.z() > 0)) {
-      observed.back() += 1;
-      continue;
-    }
-    const int i = std::min(kCosBins - 1, static_cast<int>(wi.z() * kCosBins));
-    double phi = std::atan2(wi.y(), wi.x());
-    if (phi < 0) phi += 2 * kPi;
-    const int j = std::min(kPhiBins - 1, static_cast<int>(phi / (2 * kPi) * kPhiBins));
-    observed[i * kPhiBins + j] += 1;
-  }
-  const auto density = [&](const Vec3& wi) {
-    const Vec3 sum = wi + wo;
-    const Vec3 h = sum.normalized();
-    const double wo_dot_h = wo.dot(h);
-    if (!(wo_dot_h > 0)) return 0.0;
-    return GgxAnisoLobe::VisibleNormalDensity(params, wo, h) / (4 * wo_dot_h);
-  };
-  std::vector<double> expected(observed.size(), 0.0);
-  const double simpson[5] = {1, 4, 2, 4, 1};
-  double inside = 0;
-  for (int i = 0; i < kCosBins; ++i) {
-    for (int j = 0; j < kPhiBins; ++j) {
-      const double z0 = double(i) / kCosBins, phi0 = 2 * kPi * j / kPhiBins;
-      const double dz = 1.0 / kCosBins, dphi = 2 * kPi / kPhiBins;
-      double integral = 0;
-      for (int a = 0; a < 5; ++a) {
-        for (int b = 0; b < 5; ++b) {
-          const double z = z0 + dz * a / 4, phi = phi0 + dphi * b / 4;
-          const double r = std::sqrt(std::max(0.0, 1 - z * z));
-          integral +=
-              simpson[a] * simpson[b] * density(Vec3(r * std::cos(phi), r * std::sin(phi), z));
-        }
-      }
-      integral *= dz * dphi / 144.0;
-      expected[i * kPhiBins + j] = integral * samples;
-      inside += integral;
-    }
-  }
-  expected.back() = std::max(0.0, 1.0 - inside) * samples;
-  double chi_square = 0, pooled_observed = 0, pooled_expected = 0;
-  int bins = 0;
-  for (size_t k = 0; k < observed.size(); ++k) {
-    if (expected[k] < 5) {
-      pooled_observed += observed[k];
-      pooled_expected += expected[k];
-      continue;
-    }
-    chi_square += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
-    ++bins;
-  }
-  if (pooled_expected >= 5) {
-    chi_square +=
-        (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
-    ++bins;
-  }
-  const double dof = bins - 1;
-  return (std::cbrt(chi_square / dof) - (1 - 2 / (9 * dof))) / std::sqrt(2 / (9 * dof));
+  return testing::DirectionChiSquareZ(
+      [&](const Point2& u) {
+        return Reflect(wo, GgxAnisoLobe::SampleVisibleNormal(params, wo, u.x(), u.y()));
+      },
+      [&](const Vec3& wi) {
+        const Vec3 h = (wi + wo).normalized();
+        const double wo_dot_h = wo.dot(h);
+        if (!(wo_dot_h > 0)) return 0.0;
+        return GgxAnisoLobe::VisibleNormalDensity(params, wo, h) / (4 * wo_dot_h);
+      },
+      samples, 13);
 }
 
 TEST(GgxAnisoSampling, VisibleNormalsMatchTheirDensityByChiSquare) {
