@@ -674,7 +674,9 @@ TEST(Models, RememberedPowIsPowBitForBit) {
   for (double e : exponents) {
     for (double x : bases) {
       for (int repeat = 0; repeat < 3; ++repeat) {
-        if (!std::isnan(x)) ASSERT_EQ(models::ClampedPow(x, e), std::pow(x, e)) << x << " " << e;
+        if (!std::isnan(x)) {
+          ASSERT_EQ(models::ClampedPow(x, e), std::pow(x, e)) << x << " " << e;
+        }
       }
     }
   }
