@@ -4,9 +4,9 @@
 // ModelFitter::Starts() is solved on a small subsample (each start only has to find its basin,
 // not its optimum); the lowest cost wins. The starts are screened first: every start gets a few
 // iterations on a smaller subsample still, and only the lowest few of those continue to the full
-// count on the whole start subsample. A two-lobe composition has the product of its lobes'
-// starts (196 for lambert+ggx+ggx); the screen spends most of the time on the starts still in
-// the running.
+// count on the whole start subsample. A two-lobe composition has the product of its lobes' starts
+// (196 for lambert+ggx+ggx); the screen spends most of the time on the starts still in the
+// running.
 #pragma once
 
 #include <tbb/parallel_for.h>
@@ -25,13 +25,14 @@ namespace brdf::fitters {
 
 namespace multi_start_detail {
 // Iterations every start gets in the screen, on how many samples (a stratified subsample of the
-// start subsample), and how many starts continue after it: at least kKeptStarts, else the
-// lowest sixteenth. A single lobe's starts (at most kMaxUnscreened, with the low-floor copies of
-// a designed schedule) are never screened: screening them too, keeping 4, missed the
-// exhaustive search's optimum by 2-3 % on two bundled files (krylon_blue blinn-phong,
-// retro-3M-jaune phong). On the 16 MERL tables of the lbfit comparison, screens of 3 iterations
-// on 500 to 4000 samples keeping 12 starts give `auto` the same image error on every table
-// (docs/fitting.md); the global-optimum test holds the bundled files to the exhaustive search's.
+// start subsample), and how many starts continue after it to the full count on every start
+// sample: at least kKeptStarts, else the lowest sixteenth. A single lobe's starts (at most
+// kMaxUnscreened, with the low-floor copies of a designed schedule) are never screened:
+// screening them, keeping 4 to 8 of 14, missed the exhaustive search's optimum by 2-3 % on two
+// bundled files (krylon_blue blinn-phong, retro-3M-jaune phong) or moved the pinned ggx and
+// beckmann fits of cayman and mystique by up to 0.9 %. On the 16 MERL tables of the lbfit
+// comparison, screens of 3 iterations on 500 to 4000 samples keeping 12 starts give `auto` the
+// same image error on every table (docs/fitting.md).
 inline constexpr int kScreenIterations = 3;
 inline constexpr size_t kScreenSamples = 1000;
 inline constexpr size_t kKeptStarts = 12;

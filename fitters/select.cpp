@@ -180,9 +180,7 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& given_o
     selection->candidates.push_back(
         {names[k], fit.bic, fit.metrics.rmse, std::sqrt(2.0 * fit.final_cost / std::max(n, 1.0)),
          std::numeric_limits<double>::quiet_NaN(), fit.free_variables, fit.converged});
-    // A clearly lower BIC wins; ties (to rounding) keep the earlier, simpler candidate. This
-    // matters: blinn-phong and blinn-phong-exact span the same family of lobes (they differ
-    // by a constant factor that rho_s absorbs), so they reach the same BIC.
+    // A clearly lower BIC wins; ties (to rounding) keep the earlier, simpler candidate.
     fits.push_back(std::move(fit));
     if (fits.size() > 1 && fits.back().bic < fits[best].bic - 1e-9 * std::abs(fits[best].bic)) {
       best = fits.size() - 1;

@@ -130,7 +130,9 @@ TEST(Angles, DirectionDegreesTextIsShortAndExactForScheduleAngles) {
       const Vec3 w = SphericalDirection(DegToRad(theta), DegToRad(phi));
       const DegreesText text = DirectionDegreesText(w);
       EXPECT_EQ(text.theta, FormatNumberForTest(theta)) << theta << " " << phi;
-      if (theta > 0) EXPECT_EQ(text.phi, FormatNumberForTest(phi)) << theta << " " << phi;
+      if (theta > 0) {
+        EXPECT_EQ(text.phi, FormatNumberForTest(phi)) << theta << " " << phi;
+      }
       EXPECT_EQ(ReadBackDegrees(text), w) << text.theta << " " << text.phi;
     }
   }

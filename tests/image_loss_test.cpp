@@ -146,7 +146,9 @@ TEST(ImageLoss, AutoChoosesByTheImageAndSaysSo) {
   EXPECT_EQ(glossy_fit.model.name(), "ggx") << glossy_selection.reason;
   for (const fitters::CandidateScore& candidate : glossy_selection.candidates) {
     EXPECT_TRUE(std::isfinite(candidate.image_error)) << candidate.model;
-    if (candidate.model == "lambert") EXPECT_GT(candidate.image_error, 0.1);
+    if (candidate.model == "lambert") {
+      EXPECT_GT(candidate.image_error, 0.1);
+    }
   }
   // Rendered data made by a coat over a base: the second lobe is what renders closest, and the
   // sentence says what it bought.

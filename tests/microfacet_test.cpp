@@ -65,7 +65,9 @@ TYPED_TEST(MicrofacetModel, NormalDistributionProjectsToUnitArea) {
         EXPECT_NEAR(LobeMassBeyond(lobe, std::cos(at)), beyond, 2e-6) << M::kName << " " << at;
         const double mass = LobeMassBeyond(lobe, std::cos(at));
         // (Beckmann's Gaussian tail underflows to 0 far out: nothing to invert there.)
-        if (mass > 1e-200) EXPECT_NEAR(LobeCosAt(lobe, mass), std::cos(at), 1e-9) << at;
+        if (mass > 1e-200) {
+          EXPECT_NEAR(LobeCosAt(lobe, mass), std::cos(at), 1e-9) << at;
+        }
       }
     }
   }
@@ -164,7 +166,9 @@ TYPED_TEST(MicrofacetModel, UnitFresnelLobeAlbedoMatchesBruteForceAndStaysBelowO
           << M::kName << " alpha " << alpha << " theta " << theta_deg;
       // Below 1 up to the quadrature's error; a rough lobe loses a visible share.
       EXPECT_LE(quadrature.albedo[0], 1.0 + 2 * quadrature.error[0] + 1e-9);
-      if (alpha >= 0.5) EXPECT_LT(quadrature.albedo[0], 0.99);
+      if (alpha >= 0.5) {
+        EXPECT_LT(quadrature.albedo[0], 0.99);
+      }
     }
   }
 }

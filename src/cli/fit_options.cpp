@@ -18,11 +18,14 @@ Measurement ReadForFit(const std::string& path, const FitArguments& arguments) {
 }
 
 void AddFitOptions(CLI::App* app, FitArguments* arguments) {
+  std::string candidates;
+  for (const ModelInfo& info : ModelRegistry()) {
+    if (info.auto_candidate) candidates += (candidates.empty() ? "" : ", ") + info.name;
+  }
   app->add_option("--model", arguments->model,
-                  ModelNames() +
-                      ", or auto (the simplest of the one-lobe models and lambert+ggx+ggx that the "
-                      "data support, by BIC; for tables that can be rendered, by the image error "
-                      "of their rendered spheres)")
+                  ModelNames() + ", or auto (the simplest of " + candidates +
+                      " that the data support, by BIC; for tables that can be rendered, by the "
+                      "image error of their rendered spheres)")
       ->capture_default_str();
   app->add_option("--loss", arguments->loss,
                   "auto (image for tables that can be rendered, l2 for readings that state their "

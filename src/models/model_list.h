@@ -43,9 +43,12 @@ struct BlinnPhong : Composition<Lambert, BlinnPhongLobe>, SingleLobeSlots {
   static constexpr const char* kName = "blinn-phong";
   static constexpr bool kAuto = true;
 };
+// Not an `auto` candidate: it spans blinn-phong's family of lobes (the two differ by a factor of
+// the exponent that rho_s absorbs, under the same energy bound), so it always reaches
+// blinn-phong's cost, and a tie keeps the simpler, earlier name.
 struct BlinnPhongExact : Composition<Lambert, BlinnPhongExactLobe>, SingleLobeSlots {
   static constexpr const char* kName = "blinn-phong-exact";
-  static constexpr bool kAuto = true;
+  static constexpr bool kAuto = false;
 };
 struct Ggx : Composition<Lambert, GgxLobe>, SingleLobeSlots {
   static constexpr const char* kName = "ggx";
