@@ -100,8 +100,7 @@ TEST(EnumNames, EveryConvertedEnumRoundTrips) {
     ParseExrPixelType("double");
     ADD_FAILURE() << "no error";
   } catch (const UsageError& error) {
-    EXPECT_STREQ(error.what(),
-                 "unknown OpenEXR pixel type (--exr-type) 'double' (known: half, float)");
+    EXPECT_STREQ(error.what(), "unknown OpenEXR pixel type 'double' (known: half, float)");
   }
   try {
     fitters::ParseLoss("l1");

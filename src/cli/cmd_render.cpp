@@ -73,10 +73,12 @@ Command AddRenderCommand(CLI::App& parent) {
   app->add_option("--exr", options->exr,
                   "also write the radiance (W/m^2/sr) as OpenEXR (of MATERIAL, with --vs)");
   app->add_option("--exr-type", options->exr_type, "OpenEXR pixel type: half or float")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(ParsesAs(ParseExrPixelType));
   app->add_option("--exr-compression", options->exr_compression,
                   "OpenEXR compression (lossless): piz, zip, rle or none")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(ParsesAs(ParseExrCompression));
   app->add_option("--light", options->lights,
                   "directional light dir:theta=DEG:phi=DEG:lux=LX (or irradiance=W/m^2, "
                   "rgb=R,G,B W/m^2); theta from the viewer (+z), phi from right (+x) toward up "
@@ -86,11 +88,13 @@ Command AddRenderCommand(CLI::App& parent) {
                   "environment: equirectangular OpenEXR/Radiance file, or uniform:L "
                   "(radiance in W/m^2/sr), importance sampled");
   app->add_option("--size", options->render.size, "image width and height in pixels")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16384));
   app->add_option("--spp", options->render.spp,
                   "environment samples per pixel (each technique: light, cosine and, for models, "
                   "the specular lobe; MIS)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1 << 20));
   app->add_option("--seed", options->render.seed, "random seed (same image for any thread count)")
       ->capture_default_str();
   app->add_option("--threads", options->threads,

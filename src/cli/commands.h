@@ -5,6 +5,9 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
+
+#include "core/errors.h"
 
 namespace brdf::cli {
 
@@ -14,6 +17,23 @@ struct Command {
   // Splits its work across MPI ranks under mpirun (DESIGN §11); the others refuse to run there.
   bool distributed = false;
 };
+
+// A check that an option's text is accepted by `parse` (a library's Parse* function): its
+// UsageError, which names the accepted values, becomes the parser's error for the option
+// ("--exr-type: unknown OpenEXR pixel type 'double' (known: half, float)").
+template <typename Parse>
+CLI::Validator ParsesAs(Parse parse) {
+  return CLI::Validator(
+      [parse](std::string& text) {
+        try {
+          parse(text);
+          return std::string();
+        } catch (const UsageError& error) {
+          return std::string(error.what());
+        }
+      },
+      "");
+}
 
 Command AddInfoCommand(CLI::App& parent);
 Command AddConvertCommand(CLI::App& parent);

@@ -181,7 +181,7 @@ constexpr EnumName<ExrPixelType> kExrPixelTypeNames[] = {
 };
 
 ExrPixelType ParseExrPixelType(const std::string& name) {
-  return ParseEnum(kExrPixelTypeNames, name, "OpenEXR pixel type (--exr-type)");
+  return ParseEnum(kExrPixelTypeNames, name, "OpenEXR pixel type");
 }
 
 ExrCompression ParseExrCompression(const std::string& name) {

@@ -292,10 +292,10 @@ class EnvironmentEstimator {
 
 void RenderOptions::Validate() const {
   if (size <= 0 || size > 16384) {
-    throw UsageError("--size " + std::to_string(size) + ": must lie in 1..16384 px");
+    throw UsageError("image size " + std::to_string(size) + " px: must lie in 1..16384");
   }
   if (spp <= 0 || spp > 1 << 20) {
-    throw UsageError("--spp " + std::to_string(spp) + ": must lie in 1..1048576");
+    throw UsageError(std::to_string(spp) + " samples per pixel: must lie in 1..1048576");
   }
 }
 
