@@ -89,12 +89,12 @@ Command AddRenderCommand(CLI::App& parent) {
                   "(radiance in W/m^2/sr), importance sampled");
   app->add_option("--size", options->render.size, "image width and height in pixels")
       ->capture_default_str()
-      ->check(CLI::Range(1, 16384));
+      ->check(CLI::Range(1, RenderOptions::kMaxSize));
   app->add_option("--spp", options->render.spp,
                   "environment samples per pixel (each technique: light, cosine and, for models, "
                   "the specular lobe; MIS)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 1 << 20));
+      ->check(CLI::Range(1, RenderOptions::kMaxSpp));
   app->add_option("--seed", options->render.seed, "random seed (same image for any thread count)")
       ->capture_default_str();
   app->add_option("--threads", options->threads,

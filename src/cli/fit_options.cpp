@@ -1,5 +1,6 @@
 #include "cli/fit_options.h"
 
+#include "fitters/select.h"
 #include "io/formats.h"
 #include "models/registry.h"
 
@@ -19,8 +20,8 @@ Measurement ReadForFit(const std::string& path, const FitArguments& arguments) {
 
 void AddFitOptions(CLI::App* app, FitArguments* arguments) {
   std::string candidates;
-  for (const ModelInfo& info : ModelRegistry()) {
-    if (info.auto_candidate) candidates += (candidates.empty() ? "" : ", ") + info.name;
+  for (const std::string& name : fitters::AutoCandidates()) {
+    candidates += (candidates.empty() ? "" : ", ") + name;
   }
   app->add_option("--model", arguments->model,
                   ModelNames() + ", or auto (the simplest of " + candidates +

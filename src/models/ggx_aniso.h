@@ -235,7 +235,8 @@ struct GgxAnisoLobe {
     LobeCoordinates lobe{LobeFrame::kHalfVector, std::sqrt(params[kAlphaX] * params[kAlphaY]),
                          &GgxLobe::kLobeDistribution};
     lobe.ring_panels =
-        ratio > 1.0 ? static_cast<int>(std::ceil(8.0 * std::min(ratio, kMaxRingPanels / 8.0))) : 1;
+        ratio > 1.0 ? static_cast<int>(std::min<double>(std::ceil(8.0 * ratio), kMaxRingPanels))
+                    : 1;
     return lobe;
   }
   static Rgb LobeWeight(const double* params) { return GgxLobe::LobeWeight(params); }

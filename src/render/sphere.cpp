@@ -291,11 +291,13 @@ class EnvironmentEstimator {
 }  // namespace
 
 void RenderOptions::Validate() const {
-  if (size <= 0 || size > 16384) {
-    throw UsageError("image size " + std::to_string(size) + " px: must lie in 1..16384");
+  if (size <= 0 || size > kMaxSize) {
+    throw UsageError("image size " + std::to_string(size) + " px: must lie in 1.." +
+                     std::to_string(kMaxSize));
   }
-  if (spp <= 0 || spp > 1 << 20) {
-    throw UsageError(std::to_string(spp) + " samples per pixel: must lie in 1..1048576");
+  if (spp <= 0 || spp > kMaxSpp) {
+    throw UsageError(std::to_string(spp) + " samples per pixel: must lie in 1.." +
+                     std::to_string(kMaxSpp));
   }
 }
 

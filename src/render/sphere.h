@@ -33,8 +33,10 @@ namespace brdf {
 class Progress;
 
 struct RenderOptions {
-  int size = 512;     // image width = height, px
-  int spp = 64;       // environment samples per pixel and per technique
+  static constexpr int kMaxSize = 16384;   // px
+  static constexpr int kMaxSpp = 1 << 20;  // samples per pixel
+  int size = 512;                          // image width = height, px, in 1..kMaxSize
+  int spp = 64;       // environment samples per pixel and per technique, in 1..kMaxSpp
   uint64_t seed = 0;  // the same seed gives the same image whatever the thread count
 
   // Throws UsageError naming the option.
