@@ -1,5 +1,6 @@
 #include "fitters/fit_arguments.h"
 
+#include "fitters/fit_samples.h"
 #include "gonio/instrument.h"
 #include "models/registry.h"
 
@@ -29,6 +30,22 @@ brdf::ReadOptions FitArguments::ToReadOptions() const {
   options.illuminant = ParseIlluminant(illuminant);
   options.reciprocal = reciprocal;
   return options;
+}
+
+Measurement ReadForFit(const std::string& path, const FitArguments& arguments,
+                       bool samples_wanted) {
+  const ReadOptions read_options = arguments.ToReadOptions();
+  const Loss loss = ParseLoss(arguments.loss);
+  // Only `image`, or `auto` on data with an evaluator, fits the rendered spheres alone.
+  if (!samples_wanted && (loss == Loss::kImage || loss == Loss::kAuto)) {
+    std::optional<Measurement> table = ReadEvaluator(path, read_options);
+    if (table && ResolveLoss(loss, *table) == Loss::kImage) {
+      return std::move(*table);
+    }
+  }
+  Measurement measurement = ReadMeasurement(path, read_options);
+  if (!arguments.UsesEvaluator()) measurement.tabulated.reset();
+  return measurement;
 }
 
 void ApplyInstrument(const std::string& instrument, Measurement* measurement) {

@@ -35,6 +35,16 @@ struct FitArguments {
   brdf::ReadOptions ToReadOptions() const;
 };
 
+// Reads a measurement for a fit with `arguments` (`brdf fit`, `brdf batch`, brdfkit.fit). Its table
+// evaluator (Measurement:: tabulated, a second 35 MB copy of a MERL table's values) is kept only
+// when the fit renders the measurement (FitArguments::UsesEvaluator: the image loss, `auto`'s
+// image-space choice); otherwise it is let go before the fit's peak of memory. Its samples are not
+// made when the fit never reads them: under the image loss it fits the evaluator's rendered
+// spheres, so a format that can hand out its evaluator alone (io/formats.h: ReadEvaluator; a MERL
+// table) is asked for just that, unless the caller wants the samples too (`fit --plot` draws them).
+Measurement ReadForFit(const std::string& path, const FitArguments& arguments,
+                       bool samples_wanted = false);
+
 // `brdf fit --instrument`, the instrument the readings are fitted through (DESIGN §6): ""
 // leaves the one the measurement records, if any; "none" removes it (the model at the nominal
 // directions); a JSON file is recorded in the measurement (fit_samples.h: kInstrumentKey).

@@ -8,11 +8,13 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <random>
 #include <sstream>
 
 #include "core/errors.h"
 #include "fitters/fit.h"
+#include "fitters/fit_arguments.h"
 #include "fitters/fit_samples.h"
 #include "io/formats.h"
 #include "models/model_string.h"
@@ -287,6 +289,69 @@ TEST(Merl, TheEvaluatorOutlivesItsFile) {
     const int64_t cell = MerlTable::CellIndex(h, 40, 20);
     EXPECT_EQ(read.tabulated->Eval(wi, wo)[0], written.raw(0, cell) * MerlTable::kScale[0]) << h;
   }
+}
+
+// A consumer that asks for the evaluator alone gets the table's lookup, cell measure and
+// metadata as the whole read gives them, and none of the 1.46 million samples.
+TEST(Merl, TheEvaluatorIsReadWithoutTheSamples) {
+  ScratchDir dir;
+  const std::string path = dir.File("random.binary");
+  RandomTable(5, -100.0, 2000.0).Write(path);
+  const Measurement whole = ReadMeasurement(path);
+  const std::optional<Measurement> table = ReadEvaluator(path);
+  ASSERT_TRUE(table.has_value());
+  EXPECT_TRUE(table->samples.empty());
+  EXPECT_EQ(whole.samples.size(), static_cast<size_t>(MerlTable::kCells));
+  EXPECT_EQ(table->format, "merl");
+  EXPECT_EQ(table->source, path);
+  EXPECT_EQ(table->metadata, whole.metadata);
+  ASSERT_NE(table->tabulated, nullptr);
+  ASSERT_NE(table->cell_measure, nullptr);
+  EXPECT_EQ(table->tabulated->Describe(), whole.tabulated->Describe());
+  for (int64_t cell = 0; cell < MerlTable::kCells; cell += 9973) {
+    const Sample& sample = whole.samples[cell];
+    if (sample.wi.z() <= 0 || sample.wo.z() <= 0) continue;
+    const Rgb a = table->tabulated->Eval(sample.wi, sample.wo);
+    const Rgb b = whole.tabulated->Eval(sample.wi, sample.wo);
+    for (int c = 0; c < 3; ++c) {
+      // Both NaN in a missing cell, else the same stored value.
+      EXPECT_TRUE(a[c] == b[c] || (std::isnan(a[c]) && std::isnan(b[c]))) << cell;
+    }
+    EXPECT_EQ(table->cell_measure->Measure(sample.wi, sample.wo),
+              whole.cell_measure->Measure(sample.wi, sample.wo));
+  }
+  // A format whose samples are its data has no such read: the caller reads the whole file.
+  const std::string csv = dir.File("samples.csv");
+  WriteMeasurement(whole, csv, "native-csv");
+  EXPECT_FALSE(ReadEvaluator(csv).has_value());
+}
+
+// An image-loss fit renders the evaluator and never reads a sample, so reading for it skips the
+// samples; the fit is the same, bit for bit, as one of the whole read. Other losses fit the
+// samples and get them, as does a caller that asks (`fit --plot`).
+TEST(Merl, AnImageLossFitIsReadWithoutSamplesAndFitsTheSame) {
+  ScratchDir dir;
+  const std::string path = dir.File("ggx.binary");
+  WriteMeasurement(TabulateOnGrid(ParseModel("ggx:rho_d=0.2,0.1,0.05:f0=0.04:alpha=0.2")), path);
+  fitters::FitArguments arguments;
+  arguments.model = "ggx";
+  const Measurement lean = fitters::ReadForFit(path, arguments);
+  const Measurement whole = fitters::ReadForFit(path, arguments, /*samples_wanted=*/true);
+  EXPECT_TRUE(lean.samples.empty());
+  EXPECT_EQ(whole.samples.size(), static_cast<size_t>(MerlTable::kCells));
+  ASSERT_NE(lean.tabulated, nullptr);
+  const fitters::FitOptions options = arguments.ToFitOptions(2);
+  const fitters::FitResult from_lean = fitters::FitModel(lean, "ggx", options);
+  const fitters::FitResult from_whole = fitters::FitModel(whole, "ggx", options);
+  EXPECT_EQ(from_lean.loss, fitters::Loss::kImage);
+  EXPECT_EQ(from_lean.samples, from_whole.samples);
+  EXPECT_EQ(from_lean.model.ToString(17), from_whole.model.ToString(17));
+  EXPECT_EQ(from_lean.metrics.rmse, from_whole.metrics.rmse);
+
+  arguments.loss = "sqrt";
+  const Measurement for_sqrt = fitters::ReadForFit(path, arguments);
+  EXPECT_EQ(for_sqrt.samples.size(), static_cast<size_t>(MerlTable::kCells));
+  EXPECT_EQ(for_sqrt.tabulated, nullptr);  // not rendered: let go before the fit
 }
 
 // A MERL table's samples written by another format (no cell measure of their own, no grid

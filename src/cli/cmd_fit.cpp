@@ -47,7 +47,8 @@ Command AddFitCommand(CLI::App& parent) {
 
   return {app, [options]() {
             const fitters::FitOptions fit_options = options->fit.ToFitOptions(options->threads);
-            Measurement measurement = ReadForFit(options->path, options->fit);
+            Measurement measurement =
+                ReadForFit(options->path, options->fit, !options->plot.empty());
             fitters::ApplyInstrument(options->instrument, &measurement);
 
             const fitters::ModelFit model_fit =

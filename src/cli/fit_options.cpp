@@ -12,12 +12,6 @@ std::string ModelNames() {
   return names;
 }
 
-Measurement ReadForFit(const std::string& path, const FitArguments& arguments) {
-  Measurement measurement = ReadMeasurement(path, arguments.ToReadOptions());
-  if (!arguments.UsesEvaluator()) measurement.tabulated.reset();
-  return measurement;
-}
-
 void AddFitOptions(CLI::App* app, FitArguments* arguments) {
   std::string candidates;
   for (const std::string& name : fitters::AutoCandidates()) {

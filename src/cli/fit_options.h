@@ -11,6 +11,7 @@
 namespace brdf::cli {
 
 using fitters::FitArguments;
+using fitters::ReadForFit;
 
 // Registers --model, --loss, --robust, --max-samples, --seed, --max-iterations,
 // --grey-specular and --illuminant on `app`.
@@ -18,11 +19,5 @@ void AddFitOptions(CLI::App* app, FitArguments* arguments);
 
 // "lambert, phong, ..., ggx, beckmann": the registry's names, for help texts.
 std::string ModelNames();
-
-// Reads a measurement for `brdf fit` and `brdf batch`. Its table evaluator (Measurement::
-// tabulated, a second 35 MB copy of a MERL table's values) is kept only when the fit renders
-// the measurement (FitArguments::UsesEvaluator: the image loss, `auto`'s image-space choice);
-// otherwise it is let go before the fit's peak of memory.
-Measurement ReadForFit(const std::string& path, const FitArguments& arguments);
 
 }  // namespace brdf::cli

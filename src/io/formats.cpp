@@ -49,7 +49,8 @@ const std::vector<FileFormat>& FileFormats() {
        &ReadMerl,
        &WriteMerl,
        true,
-       &CopyMerl},
+       &CopyMerl,
+       &ReadMerlEvaluator},
       {"astm", "ASTM E1392 text (Cornell), spectral", {".astm"}, &SniffAstm, &ReadAstm, nullptr},
       {"pbrt-brdf",
        "pbrt-v2 measured .brdf text, spectral",
@@ -147,6 +148,15 @@ const FileFormat& OutputFormat(const std::string& path, const std::string& forma
 Measurement ReadMeasurement(const std::string& path, const ReadOptions& options) {
   const FileFormat& format = DetectFormat(path);
   Measurement measurement = format.read(path, options);
+  measurement.format = format.name;
+  measurement.source = path;
+  return measurement;
+}
+
+std::optional<Measurement> ReadEvaluator(const std::string& path, const ReadOptions& options) {
+  const FileFormat& format = DetectFormat(path);
+  if (format.read_evaluator == nullptr) return std::nullopt;
+  Measurement measurement = format.read_evaluator(path, options);
   measurement.format = format.name;
   measurement.source = path;
   return measurement;

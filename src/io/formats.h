@@ -3,6 +3,7 @@
 // a reader that claims a file and finds it broken throws InputError naming file and line/byte).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,6 +39,11 @@ struct FileFormat {
   bool fixed_grid = false;
   // Copies a valid file of this format unchanged (validated on the way), or nullptr.
   void (*copy)(const std::string& from, const std::string& to) = nullptr;
+  // Reads the file's evaluator (Measurement::tabulated, its cell measure and the metadata)
+  // without making its samples, for a consumer that asks for the evaluator alone (a fit under
+  // the image loss renders it and never reads a sample; a MERL table's samples are 117 MB).
+  // nullptr: the format has no evaluator, or its samples cost nothing worth saving.
+  Measurement (*read_evaluator)(const std::string& path, const ReadOptions& options) = nullptr;
 };
 
 const std::vector<FileFormat>& FileFormats();
@@ -54,6 +60,10 @@ const FileFormat& DetectFormat(const std::string& path);
 const FileFormat& OutputFormat(const std::string& path, const std::string& format_name = "");
 
 Measurement ReadMeasurement(const std::string& path, const ReadOptions& options = {});
+// The file's evaluator alone, its samples not made (Measurement::samples empty), when its format
+// hands one out that way (FileFormat::read_evaluator); std::nullopt otherwise, and the caller
+// reads the whole measurement.
+std::optional<Measurement> ReadEvaluator(const std::string& path, const ReadOptions& options = {});
 WriteReport WriteMeasurement(const Measurement& measurement, const std::string& path,
                              const std::string& format_name = "");
 
@@ -63,6 +73,7 @@ WriteReport WriteNativeCsv(const Measurement& measurement, const std::string& pa
 bool SniffNativeCsv(std::string_view head, int64_t file_size);
 
 Measurement ReadMerl(const std::string& path, const ReadOptions& options);
+Measurement ReadMerlEvaluator(const std::string& path, const ReadOptions& options);
 WriteReport WriteMerl(const Measurement& measurement, const std::string& path);
 bool SniffMerl(std::string_view head, int64_t file_size);
 void CopyMerl(const std::string& from, const std::string& to);

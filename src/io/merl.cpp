@@ -393,16 +393,35 @@ bool SniffMerl(std::string_view head, int64_t file_size) {
 
 void CopyMerl(const std::string& from, const std::string& to) { MerlTable::Read(from).Write(to); }
 
-Measurement ReadMerl(const std::string& path, const ReadOptions&) {
+namespace {
+
+// The table of `path`, with values of its own: the evaluator may live long after this read (a
+// Python session), and a file rewritten in place meanwhile cannot pull its pages away.
+std::shared_ptr<const MerlTable> ReadDetached(const std::string& path) {
   MerlTable table = MerlTable::Read(path);
-  // The evaluator may live long after this read (a Python session): with values of its own, a
-  // file rewritten in place meanwhile cannot pull its pages away.
   table.Detach();
-  auto shared = std::make_shared<const MerlTable>(std::move(table));
-  Measurement measurement = shared->ToMeasurement();
+  return std::make_shared<const MerlTable>(std::move(table));
+}
+
+// `measurement` with the table's evaluator and cell measure.
+Measurement WithEvaluator(Measurement measurement, std::shared_ptr<const MerlTable> table) {
   measurement.cell_measure = MerlCellMeasure();
-  measurement.tabulated = MerlTabulated(std::move(shared));
+  measurement.tabulated = MerlTabulated(std::move(table));
   return measurement;
+}
+
+}  // namespace
+
+Measurement ReadMerl(const std::string& path, const ReadOptions&) {
+  std::shared_ptr<const MerlTable> table = ReadDetached(path);
+  Measurement measurement = table->ToMeasurement();
+  return WithEvaluator(std::move(measurement), std::move(table));
+}
+
+Measurement ReadMerlEvaluator(const std::string& path, const ReadOptions&) {
+  Measurement measurement;
+  AddGridMetadata(&measurement);
+  return WithEvaluator(std::move(measurement), ReadDetached(path));
 }
 
 bool OnMerlGrid(const std::vector<Sample>& samples) {

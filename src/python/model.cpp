@@ -136,10 +136,9 @@ the fitted model's f.)doc")
         const fitters::FitOptions options = arguments.ToFitOptions(threads);
         std::shared_ptr<const Measurement> measurement;
         if (py::isinstance<py::str>(measurement_or_path)) {
-          const ReadOptions read_options = arguments.ToReadOptions();
           const std::string path = measurement_or_path.cast<std::string>();
           py::gil_scoped_release release;
-          measurement = std::make_shared<Measurement>(ReadMeasurement(path, read_options));
+          measurement = std::make_shared<Measurement>(fitters::ReadForFit(path, arguments));
         } else if (py::isinstance<Measurement>(measurement_or_path)) {
           measurement = measurement_or_path.cast<std::shared_ptr<Measurement>>();
         } else {

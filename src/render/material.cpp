@@ -402,6 +402,8 @@ std::unique_ptr<Material> MeasurementMaterialOf(const Measurement& measurement) 
 
 std::unique_ptr<Material> LoadMaterial(const std::string& spec) {
   if (IsModelSpec(spec)) return ModelMaterialOf(LoadModel(spec));
+  // A table renders through its evaluator alone: its samples are not made.
+  if (std::optional<Measurement> table = ReadEvaluator(spec)) return MeasurementMaterialOf(*table);
   return MeasurementMaterialOf(ReadMeasurement(spec));
 }
 
