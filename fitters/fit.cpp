@@ -61,7 +61,7 @@ void FitOptions::Validate() const {
 
 std::string FitResult::Summary() const {
   std::ostringstream line;
-  line << model.ToString() << "  rmse " << metrics.rmse << " sr^-1, "
+  line << model.ToString(kShownDigits) << "  rmse " << metrics.rmse << " sr^-1, "
        << (converged ? "converged" : "NOT converged") << ", " << samples << " samples, " << time_s
        << " s";
   return line.str();

@@ -62,6 +62,11 @@ struct EnergyCheck {
   std::string method;
 };
 
+// Significant digits of the parameters printed for a person (the report's table, Summary): as
+// many as a person reads, enough that the printed model string reproduces the fit to them. JSON
+// reports keep full precision.
+inline constexpr int kShownDigits = 7;
+
 struct FitResult {
   Model model;
   std::vector<double> stderr_values;  // one per model parameter; NaN when not available
@@ -84,7 +89,8 @@ struct FitResult {
   std::vector<std::string> warnings;
 
   explicit FitResult(Model fitted) : model(std::move(fitted)) {}
-  // One line: model, parameters, rmse, converged, time.
+  // One line for a person: model, parameters (kShownDigits significant digits), rmse, converged,
+  // time.
   std::string Summary() const;
 };
 

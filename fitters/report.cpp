@@ -10,8 +10,6 @@
 namespace brdf::fitters {
 namespace {
 
-constexpr int kShownDigits = 7;
-
 nlohmann::json RgbJson(const Rgb& rgb) { return {rgb[0], rgb[1], rgb[2]}; }
 
 // A parameter as JSON: [r, g, b] or a number; NaN (not available) becomes null.

@@ -740,5 +740,19 @@ TEST(FitEnergy, IntegratedMaximumIsTheClosedFormBound) {
   }
 }
 
+// The one-line summary (brdfkit's FitResult.summary and repr) is read by people: parameters
+// rounded to the digits the report shows, a value at its bound as the bound (the JSON report's
+// model_string keeps every bit).
+TEST(FitSummary, PrintsTheModelRoundedForPeople) {
+  fitters::FitResult fit(ParseModel(
+      "ggx:rho_d=0.3,0.09999999999999998,0.1234567890123:f0=2.9748775049246083e-18,0.0220544715,"
+      "0.11169612:alpha=0.16768361234"));
+  fit.converged = true;
+  const std::string summary = fit.Summary();
+  EXPECT_EQ(summary.rfind(fit.model.ToString(fitters::kShownDigits) + "  rmse ", 0), 0u) << summary;
+  EXPECT_EQ(summary.find("e-18"), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("0.09999"), std::string::npos) << summary;
+}
+
 }  // namespace
 }  // namespace brdf
