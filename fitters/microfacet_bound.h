@@ -38,11 +38,7 @@
 
 namespace brdf::fitters {
 
-inline double ScalarValue(double x) { return x; }
-template <typename T, int N>
-double ScalarValue(const ceres::Jet<T, N>& x) {
-  return ScalarValue(x.a);
-}
+using models::ValueOf;
 
 class MicrofacetAlbedoTable {
  public:
@@ -81,7 +77,7 @@ class MicrofacetAlbedoTable {
   T MaxLobeAlbedo(const T& log_alpha, const T& f0) const {
     int j;
     const T t = AlphaCell(log_alpha, &j);
-    const double t_value = ScalarValue(t), f0_value = ScalarValue(f0);
+    const double t_value = ValueOf(t), f0_value = ValueOf(f0);
     int best = 0;
     double best_value = -1;
     for (int k = 0; k < ThetaNodes(); ++k) {
@@ -104,10 +100,10 @@ class MicrofacetAlbedoTable {
   static T AlphaCell(const T& log_alpha, int* j_out) {
     const double log_min = std::log(kMinAlpha), log_max = std::log(kMaxAlpha);
     const double step = (log_max - log_min) / (kAlphaNodes - 1);
-    const double x = (std::clamp(ScalarValue(log_alpha), log_min, log_max) - log_min) / step;
+    const double x = (std::clamp(ValueOf(log_alpha), log_min, log_max) - log_min) / step;
     const int j = std::clamp(static_cast<int>(std::floor(x)), 0, kAlphaNodes - 2);
     *j_out = j;
-    if (ScalarValue(log_alpha) <= log_min || ScalarValue(log_alpha) >= log_max) {
+    if (ValueOf(log_alpha) <= log_min || ValueOf(log_alpha) >= log_max) {
       return T(std::clamp(x - j, 0.0, 1.0));
     }
     return (log_alpha - T(log_min)) / T(step) - T(j);

@@ -111,12 +111,15 @@ class ModelFitter {
     }
     std::vector<double> x(FreeVariables());
     const auto offsets = VariableLayout<ModelType>::Offsets(options_.grey_specular);
+    const auto reserve = ReserveForLaterLobes<ModelType>();
     double budget[3] = {1, 1, 1};
     ModelType::ForEachLobe([&](auto lobe, auto index) {
       using Lobe = decltype(lobe);
       // The lobe's variables in their three-channel layout (models/term.h: Guess).
-      double variables[FitVariables::kMaxVariables], taken[3];
-      Lobe::Guess(peak, start.lobes[index - 1], budget, TabulatedBound<Lobe>(), variables, taken);
+      double variables[FitVariables::kMaxVariables], taken[3], available[3];
+      AvailableBudget(budget, reserve[index], available);
+      Lobe::Guess(peak, start.lobes[index - 1], available, TabulatedBound<Lobe>(), variables,
+                  taken);
       for (int c = 0; c < 3; ++c) budget[c] = std::max(budget[c] - taken[c], 0.0);
       const bool grey = VariableLayout<ModelType>::Grey(index, options_.grey_specular);
       models::PackVariables(variables, Lobe::NumVariables(false), grey, x.data() + offsets[index]);

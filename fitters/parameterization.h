@@ -12,13 +12,14 @@
 //                       max_theta E(theta; alpha, f0_c)
 //   lambert:            rho_d_c = budget_c logistic(d_c)
 // The logistic ("log-odds") variables keep albedos positive as log space would, and bounded as
-// the energy budget requires. With one lobe every reachable point conserves energy. A second
-// lobe takes its share of what the first left, which bounds a power-cosine lobe; a microfacet
+// the energy budget requires. A second lobe takes its share of what the first left. A microfacet
 // lobe's albedo does not fall below its f0 = 0 value (Schlick's F tends to 1 at grazing for any
-// f0), so two microfacet lobes need the joint maximum over incidence of their summed albedos,
-// which the bound does not tabulate yet: no named model has two lobes. `grey_specular` gives the
-// first lobe one variable for all channels (one rho_s or f0, as for dielectric coatings); a second
-// lobe (a clear coat) always has one.
+// f0), so the first lobe leaves the second at least that value at its largest alpha
+// (ReserveForLaterLobes), and the second raises its alpha where its f0 = 0 albedo would not fit
+// what is left (models/microfacet.h). Every reachable point therefore keeps the sum of the terms'
+// largest albedos within 1, the bound `brdf energy` checks (an upper bound of the joint maximum
+// over incidence). `grey_specular` gives the first lobe one variable for all channels (one rho_s
+// or f0, as for dielectric coatings); a second lobe (a clear coat) always has one.
 //
 // Everything here is a pure function of the variables; a fit computes the map and its Jacobian
 // once per point (FitObjective::At) and hands them to every batch.
@@ -106,14 +107,47 @@ struct VariableLayout {
   }
 };
 
+// What each lobe of M must leave the lobes after it (reserve[index], index 1 or 2): the sum of
+// their least albedos (models/term.h: LeastAlbedo). A microfacet lobe's albedo never falls below
+// its f0 = 0 value, Schlick's grazing rise; with this much left it can always raise its roughness
+// until that fits (models/microfacet.h), so the sum of the terms' albedos stays within 1 at every
+// point. With one lobe nothing is reserved, and a one-lobe map is what it always was.
+template <typename M>
+std::array<double, M::kTerms + 1> ReserveForLaterLobes() {
+  std::array<double, M::kTerms + 1> least{}, reserve{};
+  M::ForEachLobe([&](auto lobe, auto index) {
+    using Lobe = decltype(lobe);
+    if constexpr (decltype(index)::value > 1) {
+      static_assert(Lobe::kFitsAnyBudget,
+                    "a lobe that follows another must keep within any budget (models/term.h)");
+    }
+    least[index] = Lobe::LeastAlbedo(TabulatedBound<Lobe>());
+  });
+  for (int index = M::kTerms - 2; index >= 0; --index) {
+    reserve[index] = reserve[index + 1] + least[index + 1];
+  }
+  return reserve;
+}
+
+// The budget a lobe is handed: what is left, less what the later lobes need (never below 0).
+template <typename T>
+void AvailableBudget(const T* left, double reserve, T* available) {
+  for (int c = 0; c < 3; ++c) {
+    available[c] = left[c] - T(reserve);
+    if (available[c] < T(0)) available[c] = T(0);
+  }
+}
+
 // Fills M's parameters from the variables `x`.
 template <typename M, typename T>
 void ComputeParams(bool grey_specular, const T* x, T* params) {
   const auto offsets = VariableLayout<M>::Offsets(grey_specular);
-  T budget[3] = {T(1), T(1), T(1)}, taken[3];
+  const auto reserve = ReserveForLaterLobes<M>();
+  T budget[3] = {T(1), T(1), T(1)}, available[3], taken[3];
   M::ForEachLobe([&](auto lobe, auto index) {
     using Lobe = decltype(lobe);
-    Lobe::Map(x + offsets[index], VariableLayout<M>::Grey(index, grey_specular), budget,
+    AvailableBudget(budget, reserve[index], available);
+    Lobe::Map(x + offsets[index], VariableLayout<M>::Grey(index, grey_specular), available,
               params + M::kOffsets[index], taken, TabulatedBound<Lobe>());
     for (int c = 0; c < 3; ++c) {
       budget[c] = budget[c] - taken[c];
@@ -148,10 +182,12 @@ template <typename M>
 std::vector<double> ParamsToVariables(const double* params) {
   std::vector<double> x(VariableLayout<M>::Count(false));
   const auto offsets = VariableLayout<M>::Offsets(false);
-  double budget[3] = {1, 1, 1}, taken[3];
+  const auto reserve = ReserveForLaterLobes<M>();
+  double budget[3] = {1, 1, 1}, available[3], taken[3];
   M::ForEachLobe([&](auto lobe, auto index) {
     using Lobe = decltype(lobe);
-    Lobe::Unmap(params + M::kOffsets[index], VariableLayout<M>::Grey(index, false), budget,
+    AvailableBudget(budget, reserve[index], available);
+    Lobe::Unmap(params + M::kOffsets[index], VariableLayout<M>::Grey(index, false), available,
                 x.data() + offsets[index], taken, TabulatedBound<Lobe>());
     for (int c = 0; c < 3; ++c) budget[c] = std::max(budget[c] - taken[c], 0.0);
   });

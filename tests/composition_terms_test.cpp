@@ -328,10 +328,11 @@ TEST(Eon, FitRecoversTheGeneratingParameters) {
 
 // ---- two lobes ------------------------------------------------------------------------------
 
-// The second lobe's share: a microfacet lobe after another lobe has its f0 capped by what the
-// first left (models/microfacet.h), so at any point of the fitter's variables the bound, the sum
-// of each term's largest albedo over incidence, stays within 1 whenever the lobe's f0 = 0 albedo
-// fits in that budget; and the bound is never below the albedo itself (90 incidences).
+// The second lobe's share: the first lobe leaves the second at least its least albedo (a
+// microfacet lobe's f0 = 0 albedo at its largest alpha), and a microfacet lobe raises its alpha
+// where its f0 = 0 albedo would not fit what the first left (models/microfacet.h), so at any
+// point of the fitter's variables the bound, the sum of each term's largest albedo over
+// incidence, stays within 1; and the bound is never below the albedo itself (90 incidences).
 template <typename M>
 void ExpectTwoLobeBoundHolds(const char* name, uint32_t seed) {
   std::mt19937 rng(seed);
@@ -342,36 +343,82 @@ void ExpectTwoLobeBoundHolds(const char* name, uint32_t seed) {
   fitters::VariableLayout<M>::Bounds(false, &lower, &upper);
   AlbedoOptions options;
   options.theta_steps = 45;
-  int within = 0;
-  for (int point = 0; point < 40; ++point) {
+  double worst = 0;
+  for (int point = 0; point < 10000; ++point) {
     std::vector<double> x(n);
     for (int k = 0; k < n; ++k) {
-      // Shares between logistic(-6) and logistic(6), shapes over their whole range.
-      x[k] = (upper[k] - lower[k] > 2 * models::kLogisticBound - 1e-9)
-                 ? -6 + 12 * unit(rng)
-                 : lower[k] + (upper[k] - lower[k]) * unit(rng);
+      const bool share = upper[k] - lower[k] > 2 * models::kLogisticBound - 1e-9;
+      // Shares between logistic(-6) and logistic(6), or (every other point) over the whole box,
+      // which reaches f0 = 1 and the budget's end; shapes over their whole range.
+      const double half_width = point % 2 ? 6.0 : models::kLogisticBound;
+      x[k] =
+          share ? half_width * (2 * unit(rng) - 1) : lower[k] + (upper[k] - lower[k]) * unit(rng);
     }
     std::vector<double> params(M::kNumParams);
     fitters::ComputeParams<M, double>(false, x.data(), params.data());
     const Model model(info, params);
     const Rgb bound = fitters::EnergyBound(model);
-    const AlbedoCurve curve = ModelAlbedoCurve(model, options);
     for (int c = 0; c < 3; ++c) {
-      EXPECT_LE(curve.max_albedo[c], bound[c] + 2 * curve.error_at_max[c] + 1e-5)
-          << model.ToString();
+      ASSERT_LE(bound[c], 1.0 + 1e-9) << model.ToString();
+      worst = std::max(worst, bound[c]);
     }
-    // Within 1 and the table's margin, unless the second lobe's f0 is capped at 0: its f0 = 0
-    // albedo alone exceeds what the first left.
-    const int coat_f0 = info.lobes[1].first_slot;
-    for (int c = 0; c < 3; ++c) {
-      if (params[coat_f0 + c] > 0) {
-        EXPECT_LE(bound[c], 1.0 + 3e-3) << model.ToString();
-        ++within;
+    if (point < 40) {  // the bound holds the integrated albedo
+      const AlbedoCurve curve = ModelAlbedoCurve(model, options);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_LE(curve.max_albedo[c], bound[c] + 2 * curve.error_at_max[c] + 1e-5)
+            << model.ToString();
       }
     }
   }
-  // The points where the second lobe's cap is active (f0 > 0) were checked.
-  EXPECT_GT(within, 0) << name;
+  EXPECT_GT(worst, 0.999) << name;  // the points do reach the budget
+}
+
+// The fit that went past the bound before the reservation (cg_sunflower under the log loss): a
+// first lobe taking everything (f0 = 1 at alpha 0.74) and a near-mirror second lobe, whose f0 = 0
+// albedo alone is 0.91. The second lobe's alpha is raised until that albedo fits what is left.
+TEST(TwoLobes, ASmoothSecondLobeRaisesItsAlphaToFitWhatTheFirstLeft) {
+  using M = models::LambertGgxGgx;
+  const int n = fitters::VariableLayout<M>::Count(false);
+  std::vector<double> x(n, 0.0);
+  const auto offsets = fitters::VariableLayout<M>::Offsets(false);
+  for (int c = 0; c < 3; ++c) x[offsets[0] + c] = -models::kLogisticBound;  // rho_d 0
+  for (int c = 0; c < 3; ++c) x[offsets[1] + c] = models::kLogisticBound;   // f0 at its cap
+  x[offsets[1] + 3] = std::log(0.74);
+  x[offsets[2]] = -models::kLogisticBound;  // f0_2 0
+  x[offsets[2] + 1] = std::log(0.0013);
+  std::vector<double> params(M::kNumParams);
+  fitters::ComputeParams<M, double>(false, x.data(), params.data());
+  const Model model(FindModel("lambert+ggx+ggx"), params);
+  const Rgb bound = fitters::EnergyBound(model);
+  for (int c = 0; c < 3; ++c) EXPECT_LE(bound[c], 1.0 + 1e-9) << model.ToString();
+  EXPECT_GT(model.Param("alpha_2"), 0.01) << model.ToString();  // raised from 0.0013
+  EXPECT_NEAR(model.Param("alpha"), 0.74, 1e-12);               // the first lobe keeps its own
+  const AlbedoCurve curve = ModelAlbedoCurve(model, AlbedoOptions{});
+  EXPECT_EQ(curve.verdict().conservation, Conservation::kConserving) << curve.Summary();
+
+  // The raised alpha follows what the first lobe takes, and the map's derivatives (the fitter's
+  // Jacobian, by Jets through the bisection) are the map's own: central differences agree. At
+  // an interior point: the first lobe's f0 shares below their cap, one per channel (the alpha
+  // follows the channel that leaves least, a kink where two channels tie).
+  x[offsets[1]] = 1.5;
+  x[offsets[1] + 1] = 1.2;
+  x[offsets[1] + 2] = 0.9;
+  std::vector<double> at(M::kNumParams), gradients(M::kNumParams * n);
+  fitters::ParamsAndGradients<M>(false, x.data(), at.data(), gradients.data());
+  ASSERT_GT(at[M::kOffsets[2] + 3], 0.01);  // alpha_2 is raised here too
+  for (int k = 0; k < n; ++k) {
+    const double h = 1e-6;
+    std::vector<double> up = x, down = x, p_up(M::kNumParams), p_down(M::kNumParams);
+    up[k] += h;
+    down[k] -= h;
+    fitters::ComputeParams<M, double>(false, up.data(), p_up.data());
+    fitters::ComputeParams<M, double>(false, down.data(), p_down.data());
+    for (int p = 0; p < M::kNumParams; ++p) {
+      const double numeric = (p_up[p] - p_down[p]) / (2 * h);
+      EXPECT_NEAR(gradients[p * n + k], numeric, 1e-5 * std::max(1.0, std::abs(numeric)))
+          << "param " << p << " variable " << k;
+    }
+  }
 }
 
 TEST(TwoLobes, NamedCompositionsAreReciprocalAndBounded) {

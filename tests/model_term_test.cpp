@@ -106,6 +106,12 @@ struct BackscatterLobe {
     lower[s] = std::log(kFitShapeMin);
     upper[s] = std::log(kFitShapeMax);
   }
+  // A share of any budget, down to nothing.
+  static constexpr bool kFitsAnyBudget = true;
+  template <typename Bound>
+  static double LeastAlbedo(const Bound&) {
+    return 0.0;
+  }
   template <typename T, typename Bound>
   static void Map(const T* variables, bool grey, const T* budget, T* params, T* taken,
                   const Bound&) {

@@ -221,9 +221,42 @@ struct MicrofacetLobe {
   // largest of E's values at the table's nodes, each linear in f0 (Schlick), so M is convex in f0
   // and M(cap) <= (1 - cap) M(0) + cap M(1), which is the budget for
   //   cap = (budget - M(0)) / (M(1) - M(0))   clamped to [0, 1].
-  // The cap cannot go below f0 = 0: a lobe whose M(0) alone (Schlick's grazing rise) exceeds the
-  // budget still takes M(0), and the fit's energy check (fitters/energy_check.h) says so.
+  // The cap cannot go below f0 = 0, and M(0), Schlick's grazing rise, is no small thing for a
+  // smooth lobe (0.91 at alpha 0.001, 0.38 at 0.1, 0.03 at 1.5). Where the budget is below it
+  // the lobe's roughness is raised until M(0) fits (M(0) falls as alpha grows): the lobe then
+  // takes exactly the budget at f0 = 0. A lobe before this one leaves it at least M(0) at the
+  // largest alpha (LeastAlbedo; parameterization.h reserves it), so such an alpha always exists.
   static int NumVariables(bool grey) { return (grey ? 1 : 3) + 1; }
+  static constexpr bool kFitsAnyBudget = true;  // down to LeastAlbedo (models/term.h)
+  // The least albedo the lobe takes anywhere in its variables' range: f0 = 0 at the largest alpha.
+  template <typename Bound>
+  static double LeastAlbedo(const Bound& bound) {
+    return bound.MaxAlbedo(std::log(kFitShapeMax), 0.0);
+  }
+  // `log_alpha`, or where it leaves the lobe's f0 = 0 albedo above the least of the budget's
+  // channels, the smallest log alpha at which that albedo fits: found by bisection on the values,
+  // its derivative that of the budget through the slope of M(0) (so the map stays differentiable
+  // for the fitter, which then moves alpha by moving what the earlier lobe takes).
+  template <typename T, typename Bound>
+  static T LogAlphaWithinBudget(const T& log_alpha, const T* budget, const Bound& bound) {
+    T least = budget[0];
+    for (int c = 1; c < 3; ++c) {
+      if (budget[c] < least) least = budget[c];
+    }
+    if (!(bound.MaxAlbedo(log_alpha, T(0)) > least)) return log_alpha;
+    const double target = ValueOf(least);
+    double fits = std::log(kFitShapeMax), too_smooth = ValueOf(log_alpha);
+    if (bound.MaxAlbedo(fits, 0.0) > target) return T(fits);  // not reserved for: no alpha fits
+    for (int step = 0; step < 60; ++step) {
+      const double middle = 0.5 * (fits + too_smooth);
+      (bound.MaxAlbedo(middle, 0.0) > target ? too_smooth : fits) = middle;
+    }
+    constexpr double kDelta = 1e-6;
+    const double slope =
+        (bound.MaxAlbedo(fits + kDelta, 0.0) - bound.MaxAlbedo(fits - kDelta, 0.0)) / (2 * kDelta);
+    if (!(slope < 0.0)) return T(fits);
+    return T(fits) + (least - T(target)) / T(slope);
+  }
   static void VariableBounds(bool grey, double* lower, double* upper) {
     LobeVariableBounds(grey, kFitShapeMin, kFitShapeMax, lower, upper);
   }
@@ -252,7 +285,7 @@ struct MicrofacetLobe {
                   const Bound& bound) {
     using std::exp;
     const int s = grey ? 1 : 3;
-    const T& log_alpha = variables[s];
+    const T log_alpha = LogAlphaWithinBudget(variables[s], budget, bound);
     T caps[3];
     F0Caps(log_alpha, budget, grey, bound, caps);
     for (int c = 0; c < 3; ++c) {

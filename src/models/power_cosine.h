@@ -119,6 +119,12 @@ struct PowerCosineLobe {
   static void VariableBounds(bool grey, double* lower, double* upper) {
     LobeVariableBounds(grey, kFitShapeMin, kFitShapeMax, lower, upper);
   }
+  // A share of any budget, down to nothing: the lobe may follow another (models/term.h).
+  static constexpr bool kFitsAnyBudget = true;
+  template <typename Bound>
+  static double LeastAlbedo(const Bound&) {
+    return 0.0;
+  }
   template <typename T, typename Bound>
   static void Map(const T* variables, bool grey, const T* budget, T* params, T* taken,
                   const Bound&) {

@@ -24,8 +24,14 @@
 // For the energy bound and the fitter's free variables (fitters/parameterization.h):
 //   kShapeSlot (-1 without one), kFitShapeMin/Max, kShapeScale
 //   NumVariables(grey), Map<T>(vars, grey, budget, params, bound) -> the albedo it takes from the
-//   budget (every reachable point conserves energy), Unmap (its inverse), Starts, Guess.
+//   budget (never more: every reachable point conserves energy), Unmap (its inverse), Starts,
+//   Guess; for a lobe, LeastAlbedo(bound): the least it takes anywhere in its variables' range,
+//   which the lobes before it leave it (a microfacet lobe's f0 = 0 albedo at its largest alpha),
+//   and kFitsAnyBudget: whether its Map keeps within any budget down to that (a lobe that
+//   follows another must).
 #pragma once
+
+#include <ceres/jet.h>
 
 #include <algorithm>
 #include <cmath>
@@ -72,6 +78,14 @@ struct PeakSample {
 // The inverse of a logistic map kept inside the fitter's box (+-kLogisticBound): a parameter at
 // its bound maps to a saturated variable.
 inline constexpr double kLogisticBound = 40.0;  // logistic(-40) = 4e-18: "zero" is reachable
+
+// The value of a scalar of the templated code: a double itself, a Jet's value part (for choices
+// made on values, such as a bisection, whose derivative is then put back by hand).
+inline double ValueOf(double x) { return x; }
+template <typename T, int N>
+double ValueOf(const ceres::Jet<T, N>& x) {
+  return ValueOf(x.a);
+}
 
 template <typename T>
 T Logistic(const T& x) {
