@@ -117,11 +117,11 @@ std::array<double, M::kTerms + 1> ReserveForLaterLobes() {
   std::array<double, M::kTerms + 1> least{}, reserve{};
   M::ForEachLobe([&](auto lobe, auto index) {
     using Lobe = decltype(lobe);
-    if constexpr (decltype(index)::value > 1) {
+    if constexpr (decltype(index)::value > 1) {  // the first lobe's least albedo is never reserved
       static_assert(Lobe::kFitsAnyBudget,
                     "a lobe that follows another must keep within any budget (models/term.h)");
+      least[index] = Lobe::LeastAlbedo(TabulatedBound<Lobe>());
     }
-    least[index] = Lobe::LeastAlbedo(TabulatedBound<Lobe>());
   });
   for (int index = M::kTerms - 2; index >= 0; --index) {
     reserve[index] = reserve[index + 1] + least[index + 1];

@@ -285,13 +285,9 @@ struct GgxAnisoLobe {
   static constexpr int Shares(bool grey) { return grey ? 1 : 3; }
   static int NumVariables(bool grey) { return Shares(grey) + 3; }
   // Its Map caps f0 by the budget but does not raise the alphas to fit a budget below its f0 = 0
-  // albedo, as MicrofacetLobe::LogAlphaWithinBudget does: it is composed as the first lobe, whose
-  // budget always holds that albedo (parameterization.h reserves what later lobes need).
+  // albedo, as MicrofacetLobe::LogAlphaWithinBudget does: it can only be the first lobe, whose
+  // budget always holds that albedo (parameterization.h refuses it anywhere else at compile time).
   static constexpr bool kFitsAnyBudget = false;
-  template <typename Bound>
-  static double LeastAlbedo(const Bound& bound) {
-    return bound.MaxAlbedo(std::log(kFitShapeMax), 0.0);
-  }
   static void VariableBounds(bool grey, double* lower, double* upper) {
     const int s = Shares(grey);
     LobeVariableBounds(grey, kFitShapeMin, kFitShapeMax, lower, upper);  // shares, then m

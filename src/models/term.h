@@ -25,10 +25,10 @@
 //   kShapeSlot (-1 without one), kFitShapeMin/Max, kShapeScale
 //   NumVariables(grey), Map<T>(vars, grey, budget, params, bound) -> the albedo it takes from the
 //   budget (never more: every reachable point conserves energy), Unmap (its inverse), Starts,
-//   Guess; for a lobe, LeastAlbedo(bound): the least it takes anywhere in its variables' range,
-//   which the lobes before it leave it (a microfacet lobe's f0 = 0 albedo at its largest alpha),
-//   and kFitsAnyBudget: whether its Map keeps within any budget down to that (a lobe that
-//   follows another must).
+//   Guess; for a lobe, kFitsAnyBudget: whether its Map keeps within any budget down to its
+//   LeastAlbedo(bound), the least it takes anywhere in its variables' range (a microfacet lobe's
+//   f0 = 0 albedo at its largest alpha), which the lobes before it leave it. Only such a lobe may
+//   follow another, and only it provides LeastAlbedo.
 #pragma once
 
 #include <ceres/jet.h>
