@@ -207,10 +207,9 @@ double MaxAlbedo(const CoatParams& p) {
       return sample;
     };
   };
-  const LobeCoordinates coat_lobe{LobeFrame::kHalfVector, p.coat_alpha,
+  const LobeCoordinates coat_lobe{kHalfVectorFrame, p.coat_alpha,
                                   &models::GgxLobe::kLobeDistribution};
-  const LobeCoordinates base_lobe{LobeFrame::kHalfVector, p.alpha,
-                                  &models::GgxLobe::kLobeDistribution};
+  const LobeCoordinates base_lobe{kHalfVectorFrame, p.alpha, &models::GgxLobe::kLobeDistribution};
   const LobeQuadratureOptions options;
   double worst = 0;
   for (int k = 0; k < 90; ++k) {

@@ -121,22 +121,10 @@ double KthSmallestScore(const std::vector<double>& scores, size_t k, std::vector
 }
 
 // x = -e ln cos(offset) of one sample: 0 at the lobe's centre, infinity where the lobe is 0.
-double LobeExponentTerm(LobeFrame frame, double exponent, const Vec3& wi, const Vec3& wo) {
-  double cos_offset;
-  if (frame == LobeFrame::kMirror) {
-    cos_offset = MirrorDirection(wi).dot(wo);
-  } else if (frame == LobeFrame::kRetro) {
-    cos_offset = wi.dot(wo);
-  } else {
-    cos_offset = (wi + wo).normalized().z();
-  }
+double LobeExponentTerm(const LobeFrame& frame, double exponent, const Vec3& wi, const Vec3& wo) {
+  const double cos_offset = frame.half_vector ? (wi + wo).normalized().z() : frame.Axis(wo).dot(wi);
   if (!(cos_offset > 0)) return std::numeric_limits<double>::infinity();
   return -exponent * std::log(std::min(cos_offset, 1.0));
-}
-
-const char* OffsetName(LobeFrame frame) {
-  if (frame == LobeFrame::kRetro) return "angle from the incident direction";
-  return frame == LobeFrame::kMirror ? "angle from the mirror direction" : "half-vector angle";
 }
 
 // The diffuse part cannot be unresolved; only lobed fits whose lobe is still there are checked.
@@ -169,7 +157,7 @@ void CheckLobeResolution(const std::vector<FitSample>& samples, FitResult* resul
                             : std::string("nowhere");
   result->warnings.push_back(
       "lobe narrower than the sample spacing: the fitted lobe (" + ShapeText(model) +
-      ", half-width " + Format("%.3g", lobe.half_width_deg) + " deg in the " + OffsetName(frame) +
+      ", half-width " + Format("%.3g", lobe.half_width_deg) + " deg in the " + frame.offset_name +
       ") has no sample on its flank (" + Format("%.3g", lobe.half_width_deg / 2) + " to " +
       Format("%.3g", 3 * lobe.half_width_deg) + " deg); the nearest sample off its peak is " +
       nearest + " away, so the data bound the " +
@@ -286,12 +274,12 @@ void CheckResidualWarnings(const PreparedSamples& prepared, FitResult* result) {
 
 }  // namespace
 
-LobeResolution ResolveLobe(LobeFrame frame, double exponent,
+LobeResolution ResolveLobe(const LobeFrame& frame, double exponent,
                            const std::vector<FitSample>& samples) {
   LobeResolution lobe;
   lobe.half_width_deg = std::acos(std::exp(-0.5 / exponent)) * kRadToDeg;
   lobe.nearest_off_peak_deg = std::numeric_limits<double>::infinity();
-  if (frame == LobeFrame::kNormal) return lobe;
+  if (frame.AboutNormal()) return lobe;
   // The offset acos(exp(-x / e)) grows with x: the nearest sample off the peak is the one of
   // least x, so one offset is taken, not one a sample. Counts and a minimum are the same in any
   // order, so the samples are scanned in parallel.

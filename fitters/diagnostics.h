@@ -36,7 +36,8 @@ struct LobeResolution {
   // peak); infinity when there is none.
   double nearest_off_peak_deg = 0;
 };
-LobeResolution ResolveLobe(LobeFrame frame, double exponent, const std::vector<FitSample>& samples);
+LobeResolution ResolveLobe(const LobeFrame& frame, double exponent,
+                           const std::vector<FitSample>& samples);
 
 // Statistics of the fitted model's residuals against the values it was fitted to (the fit's
 // prepared samples, with the file's sigma where it has one).

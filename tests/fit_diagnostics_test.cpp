@@ -60,7 +60,7 @@ TEST(FitDiagnostics, LobeNarrowerThanTheSampleSpacingIsReported) {
   const fitters::PreparedSamples prepared =
       fitters::PrepareSamples(SynthesizeOnHemisphere(truth, options));
   const fitters::LobeResolution lobe =
-      fitters::ResolveLobe(LobeFrame::kMirror, 1e4, prepared.samples);
+      fitters::ResolveLobe(truth.Lobe().frame, 1e4, prepared.samples);
   EXPECT_EQ(lobe.flank_samples, 0u);
   EXPECT_GT(lobe.peak_samples, 0u);
   EXPECT_NEAR(lobe.half_width_deg, 180 / kPi / std::sqrt(1e4), 1e-3);
@@ -86,7 +86,7 @@ TEST(FitDiagnostics, SamplesTheFitSkipsDoNotCount) {
   for (const Sample& skipped : {missing, not_finite, below}) measurement.samples.push_back(skipped);
   const fitters::PreparedSamples prepared = fitters::PrepareSamples(measurement);
   ASSERT_EQ(prepared.samples.size() + 3, measurement.samples.size());
-  for (LobeFrame frame : {LobeFrame::kMirror, LobeFrame::kHalfVector}) {
+  for (const LobeFrame& frame : {ParseModel("phong").Lobe().frame, kHalfVectorFrame}) {
     const fitters::LobeResolution with_skipped = fitters::ResolveLobe(frame, 300, prepared.samples);
     const fitters::LobeResolution without = fitters::ResolveLobe(frame, 300, clean.samples);
     EXPECT_GT(without.peak_samples, 0u);
@@ -114,12 +114,13 @@ TEST(FitDiagnostics, LobeResolutionCountsTheFlankExactly) {
       samples.push_back(sample);
     }
   }
-  const fitters::LobeResolution lobe = fitters::ResolveLobe(LobeFrame::kMirror, 100, samples);
+  const fitters::LobeResolution lobe =
+      fitters::ResolveLobe(ParseModel("phong").Lobe().frame, 100, samples);
   EXPECT_EQ(lobe.peak_samples, 8u);
   EXPECT_EQ(lobe.flank_samples, 16u);
   EXPECT_NEAR(lobe.nearest_off_peak_deg, 4.0, 1e-9);
   // In half-vector terms the same rings sit at half the offset: theta_h = 0.5, 2, 5, 10 deg.
-  const fitters::LobeResolution blinn = fitters::ResolveLobe(LobeFrame::kHalfVector, 100, samples);
+  const fitters::LobeResolution blinn = fitters::ResolveLobe(kHalfVectorFrame, 100, samples);
   EXPECT_EQ(blinn.peak_samples, 16u);  // 0.5 and 2 deg < 2.87 deg
   EXPECT_EQ(blinn.flank_samples, 16u);
 }

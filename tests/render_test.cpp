@@ -259,7 +259,7 @@ TEST(Render, MeasuredGlossyDataGetALobeToSampleDiffuseDataNone) {
       EXPECT_FALSE(lobe.has_value());
     } else {
       ASSERT_TRUE(lobe.has_value());
-      EXPECT_EQ(lobe->frame, LobeFrame::kHalfVector);
+      EXPECT_TRUE(lobe->frame.half_vector);
       EXPECT_GT(lobe->exponent, 50.0);
       EXPECT_LT(lobe->exponent, 200.0);
     }

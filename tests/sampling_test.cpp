@@ -63,7 +63,7 @@ TEST(Sampling, HalfVectorJacobianMapsDensityOfHToDensityOfWi) {
   for (double theta_o_deg : {0.0, 35.0, 70.0}) {
     const Vec3 wo = SphericalDirection(DegToRad(theta_o_deg), 1.0);
     // Exponent 0 (h uniform) keeps 1/pdf = 8 pi (wo.h) bounded, so the estimate converges fast.
-    const LobeCoordinates half_vector{LobeFrame::kHalfVector, 0.0};
+    const LobeCoordinates half_vector{kHalfVectorFrame, 0.0};
     Rng random(0, 11);
     double solid_angle = 0;
     for (int k = 0; k < kDraws; ++k) {

@@ -45,14 +45,14 @@ std::string SparseLobeWarning(const Model& model, const AlbedoOptions& options) 
   double worst_hits = std::numeric_limits<double>::infinity();
   double worst_theta = 0, worst_exponent = 0;
   for (const AlbedoTerm& term : AlbedoTerms(model)) {
-    if (term.coordinates.frame == LobeFrame::kNormal || !(term.scale > 0)) continue;
+    if (term.coordinates.frame.AboutNormal() || !(term.scale > 0)) continue;
     // The lobe's half width as a power-cosine exponent (the exponent itself for the power-cosine
     // models; the same half width for a microfacet lobe).
     const double e = term.model.info().EquivalentExponent(term.model.params().data());
     for (double theta_deg : options.ThetaDegrees()) {
       const double cos_theta = std::cos(DegToRad(theta_deg));
       double probability = 2.0 * cos_theta / (e + 1.0);
-      if (term.coordinates.frame == LobeFrame::kHalfVector) probability *= 4.0 * cos_theta;
+      if (term.coordinates.frame.half_vector) probability *= 4.0 * cos_theta;
       const double hits = static_cast<double>(options.samples) * std::min(probability, 1.0);
       if (hits < worst_hits) {
         worst_hits = hits;
@@ -74,9 +74,9 @@ std::string SparseLobeWarning(const Model& model, const AlbedoOptions& options) 
 std::vector<SamplingStrategy> ImportanceStrategies(const std::vector<AlbedoTerm>& terms) {
   double total_scale = 0;
   for (const AlbedoTerm& term : terms) total_scale += term.scale;
-  std::vector<SamplingStrategy> strategies = {{{LobeFrame::kNormal, 1.0}, 0.0}};
+  std::vector<SamplingStrategy> strategies = {{{kNormalFrame, 1.0}, 0.0}};
   for (const AlbedoTerm& term : terms) {
-    if (term.coordinates.frame == LobeFrame::kNormal) {
+    if (term.coordinates.frame.AboutNormal()) {
       strategies[0].weight += term.scale;
     } else {
       strategies.push_back({term.coordinates, term.scale});

@@ -81,24 +81,24 @@ double AboveHorizonHalfWidth(double a, double b) {
 // phi = 0 points up, toward the normal; on every ring cos(theta_i) = a + b cos(phi), b >= 0.
 class LobeRings {
  public:
-  LobeRings(const Vec3& wo, LobeFrame frame) : wo_(wo), frame_(frame) {
+  LobeRings(const Vec3& wo, const LobeFrame& frame) : wo_(wo), half_vector_(frame.half_vector) {
     const double theta_o = Theta(wo), phi_o = Phi(wo);
     cos_theta_o_ = std::cos(theta_o);
     sin_theta_o_ = std::sin(theta_o);
     phi_o_ = phi_o;
     // Axis at polar angle theta_a, azimuth phi_a; tangent_up_ is the unit vector in the plane
     // of the axis and the normal, perpendicular to the axis, with a non-negative z.
-    // The axis: the normal, the mirror direction of wo, or wo itself (a retro lobe).
-    const bool tilted = frame == LobeFrame::kMirror || frame == LobeFrame::kRetro;
-    const double theta_a = tilted ? theta_o : 0.0;
-    const double phi_a = frame == LobeFrame::kMirror ? phi_o + kPi : (tilted ? phi_o : 0.0);
+    // The axis in wi that the frame names (the normal, the mirror direction of wo, wo itself);
+    // a half-vector lobe's rings lie about the normal in h.
+    const Vec3 axis = frame.half_vector ? Vec3::UnitZ() : frame.Axis(wo).normalized();
+    const double theta_a = Theta(axis), phi_a = Phi(axis);
     axis_ = SphericalDirection(theta_a, phi_a);
     tangent_up_ = Vec3(-std::cos(theta_a) * std::cos(phi_a), -std::cos(theta_a) * std::sin(phi_a),
                        std::sin(theta_a));
     tangent_side_ = axis_.cross(tangent_up_);
     axis_sin_theta_ = std::sin(theta_a);
     axis_cos_theta_ = std::cos(theta_a);
-    if (frame == LobeFrame::kHalfVector) {
+    if (half_vector_) {
       // h with theta_h <= pi/4 + theta_o/2 reflects wo above the horizon for some phi; rings
       // start to cross the horizon at pi/4 - theta_o/2 (cos(theta_i) = cos(theta_o) cos(2
       // theta_h) + sin(theta_o) sin(2 theta_h) cos(phi), see RingCosine).
@@ -116,7 +116,7 @@ class LobeRings {
 
   // cos(theta_i) = a + b cos(phi) on the ring at polar angle beta.
   void RingCosine(double cos_beta, double sin_beta, double* a, double* b) const {
-    if (frame_ == LobeFrame::kHalfVector) {
+    if (half_vector_) {
       // wi = 2 (wo.h) h - wo with h = (sin b cos(phi_o+phi), sin b sin(phi_o+phi), cos b).
       *a = cos_theta_o_ * (2.0 * cos_beta * cos_beta - 1.0);
       *b = sin_theta_o_ * 2.0 * sin_beta * cos_beta;
@@ -129,7 +129,7 @@ class LobeRings {
   // wi on the ring, and the Jacobian of wi's solid angle with respect to the ring's own
   // solid angle (1 about an axis in wi; 4 (wo.h) in half-vector space, Walter et al. 2007).
   Vec3 Incident(double cos_beta, double sin_beta, double phi, double* jacobian) const {
-    if (frame_ == LobeFrame::kHalfVector) {
+    if (half_vector_) {
       const Vec3 h(sin_beta * std::cos(phi_o_ + phi), sin_beta * std::sin(phi_o_ + phi), cos_beta);
       const double wo_dot_h = wo_.dot(h);
       *jacobian = 4.0 * wo_dot_h;
@@ -142,7 +142,7 @@ class LobeRings {
 
  private:
   Vec3 wo_;
-  LobeFrame frame_;
+  bool half_vector_;
   double cos_theta_o_ = 1, sin_theta_o_ = 0, phi_o_ = 0;
   Vec3 axis_, tangent_up_, tangent_side_;
   double axis_sin_theta_ = 0, axis_cos_theta_ = 1;

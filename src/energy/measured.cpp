@@ -211,7 +211,7 @@ MeasuredBrdf TabulatedMeasuredBrdf(std::shared_ptr<const TabulatedBrdf> tabulate
   };
   // Dense tables (MERL's half-vector grid, RGL's warp about the half vector) are densest where
   // the lobe is: integrate in the half vector, uniform in cos(theta_h).
-  measured.coordinates = {LobeFrame::kHalfVector, 0.0};
+  measured.coordinates = {kHalfVectorFrame, 0.0};
   measured.notes.insert(measured.notes.begin(), tabulated->Describe());
   return measured;
 }
@@ -228,7 +228,7 @@ MeasuredBrdf ScatteredMeasuredBrdf(const Measurement& measurement) {
   measured.brdf = [interpolator](const Vec3& wi, const Vec3& wo) {
     return (*interpolator)(wi, wo);
   };
-  measured.coordinates = {LobeFrame::kHalfVector, 0.0};
+  measured.coordinates = {kHalfVectorFrame, 0.0};
   measured.largest_incidence_deg = LargestIncidenceDeg(measurement, /*reciprocal=*/true);
   measured.notes.push_back(
       "scattered samples: inverse-distance weighting of the " + std::to_string(kNeighbours) +

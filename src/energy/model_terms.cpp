@@ -15,7 +15,7 @@ double MaxChannel(const std::vector<double>& params, int slot) {
 std::vector<AlbedoTerm> AlbedoTerms(const Model& model) {
   const std::vector<double>& params = model.params();
   const ModelInfo& info = model.info();
-  const LobeCoordinates diffuse_coordinates{LobeFrame::kNormal, 1.0};
+  const LobeCoordinates diffuse_coordinates{kNormalFrame, 1.0};
   // Every model's diffuse term comes first and takes rho_d at slot 0 (DESIGN §2); alone, it is
   // the model named by the term (lambert, eon) with the composition's first parameters.
   const double diffuse_scale = MaxChannel(params, 0);

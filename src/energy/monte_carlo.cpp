@@ -31,44 +31,38 @@ bool VisibleNormals(const LobeCoordinates& lobe, const Vec3& wo) {
 }  // namespace
 
 Vec3 SampleStrategy(const LobeCoordinates& coordinates, const Vec3& wo, const Point2& u) {
-  switch (coordinates.frame) {
-    case LobeFrame::kNormal:
-      return coordinates.exponent == 1.0 ? SampleCosineHemisphere(u)
-                                         : SamplePowerCosineLobe(u, coordinates.exponent);
-    case LobeFrame::kMirror:
-    case LobeFrame::kRetro:
-      return Frame::FromZ(LobeAxis(coordinates.frame, wo))
-          .FromLocal(SamplePowerCosineLobe(u, coordinates.exponent));
-    case LobeFrame::kHalfVector:
-      if (VisibleNormals(coordinates, wo)) {
-        return Reflect(
-            wo, coordinates.distribution->sample_visible(wo, u.x(), u.y(), coordinates.exponent));
-      }
-      return Reflect(wo, SampleLobeAboutZ(coordinates, u));
+  const LobeFrame& frame = coordinates.frame;
+  if (frame.half_vector) {
+    if (VisibleNormals(coordinates, wo)) {
+      return Reflect(
+          wo, coordinates.distribution->sample_visible(wo, u.x(), u.y(), coordinates.exponent));
+    }
+    return Reflect(wo, SampleLobeAboutZ(coordinates, u));
   }
-  return Vec3::UnitZ();
+  if (frame.AboutNormal()) {
+    return coordinates.exponent == 1.0 ? SampleCosineHemisphere(u)
+                                       : SamplePowerCosineLobe(u, coordinates.exponent);
+  }
+  return Frame::FromZ(frame.Axis(wo)).FromLocal(SamplePowerCosineLobe(u, coordinates.exponent));
 }
 
 double StrategyPdf(const LobeCoordinates& coordinates, const Vec3& wo, const Vec3& wi) {
-  switch (coordinates.frame) {
-    case LobeFrame::kNormal:
-      return coordinates.exponent == 1.0 ? CosineHemispherePdf(CosTheta(wi))
-                                         : PowerCosineLobePdf(CosTheta(wi), coordinates.exponent);
-    case LobeFrame::kMirror:
-    case LobeFrame::kRetro:
-      return PowerCosineLobePdf(wi.dot(LobeAxis(coordinates.frame, wo)), coordinates.exponent);
-    case LobeFrame::kHalfVector: {
-      const Vec3 sum = wi + wo;
-      if (sum.squaredNorm() <= 0.0) return 0.0;
-      const Vec3 half_vector = sum.normalized();
-      const double density =
-          VisibleNormals(coordinates, wo)
-              ? coordinates.distribution->visible_density(wo, half_vector, coordinates.exponent)
-              : LobeDensity(coordinates, CosTheta(half_vector));
-      return HalfVectorToIncidentPdf(density, wo.dot(half_vector));
-    }
+  const LobeFrame& frame = coordinates.frame;
+  if (frame.half_vector) {
+    const Vec3 sum = wi + wo;
+    if (sum.squaredNorm() <= 0.0) return 0.0;
+    const Vec3 half_vector = sum.normalized();
+    const double density =
+        VisibleNormals(coordinates, wo)
+            ? coordinates.distribution->visible_density(wo, half_vector, coordinates.exponent)
+            : LobeDensity(coordinates, CosTheta(half_vector));
+    return HalfVectorToIncidentPdf(density, wo.dot(half_vector));
   }
-  return 0.0;
+  if (frame.AboutNormal()) {
+    return coordinates.exponent == 1.0 ? CosineHemispherePdf(CosTheta(wi))
+                                       : PowerCosineLobePdf(CosTheta(wi), coordinates.exponent);
+  }
+  return PowerCosineLobePdf(wi.dot(frame.Axis(wo)), coordinates.exponent);
 }
 
 AlbedoEstimate EstimateAlbedoByMixture(const BrdfFunction& brdf, const Vec3& wo,
@@ -119,7 +113,7 @@ AlbedoEstimate EstimateAlbedoByMixture(const BrdfFunction& brdf, const Vec3& wo,
 
 AlbedoEstimate EstimateAlbedoCosine(const BrdfFunction& brdf, const Vec3& wo, int64_t samples,
                                     Rng* stream) {
-  return EstimateAlbedoByMixture(brdf, wo, {{{LobeFrame::kNormal, 1.0}, 1.0}}, samples, stream);
+  return EstimateAlbedoByMixture(brdf, wo, {{{kNormalFrame, 1.0}, 1.0}}, samples, stream);
 }
 
 }  // namespace brdf

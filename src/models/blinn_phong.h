@@ -23,7 +23,7 @@ struct BlinnPhongLobe : PowerCosineLobe<BlinnPhongLobe> {
   static constexpr const char* kFormula = "rho_s (m+8)/(8pi) cos^m(theta_h)";
   static constexpr const char* kExponentName = "m";
   // cos^m(theta_h): a power-cosine lobe of the half vector about the normal.
-  static constexpr LobeFrame kFrame = LobeFrame::kHalfVector;
+  static constexpr LobeFrame kFrame = kHalfVectorFrame;
 
   // Normal-incidence lobe albedo per unit rho_s, A(m) above (templated for Ceres Jets).
   template <typename T>

@@ -21,7 +21,7 @@ struct BlinnPhongExactLobe : PowerCosineLobe<BlinnPhongExactLobe> {
   static constexpr const char* kName = "blinn-phong-exact";
   static constexpr const char* kFormula = "rho_s (m+2)(m+4)/(8pi(2^(-m/2)+m)) cos^m(theta_h)";
   static constexpr const char* kExponentName = "m";
-  static constexpr LobeFrame kFrame = LobeFrame::kHalfVector;
+  static constexpr LobeFrame kFrame = kHalfVectorFrame;
 
   // Normal-incidence lobe albedo per unit rho_s: exactly 1 (the factor above is built for it).
   template <typename T>

@@ -71,7 +71,7 @@ struct Eon {
     return {rho_d,
             {"sigma", kSigma, 1, 0.0, 1.0, 0.5, "Oren-Nayar roughness (0: lambert, 1: roughest)"}};
   }
-  static LobeCoordinates Lobe(const double*) { return {LobeFrame::kNormal, 1.0}; }
+  static LobeCoordinates Lobe(const double*) { return {kNormalFrame, 1.0}; }
   static Rgb LobeWeight(const double* params) { return LoadRgb(params, kRhoD); }
   static double EquivalentExponent(const double*) { return 0.0; }
   // The largest albedo over incidence: rho_d, at grazing (see above).

@@ -232,7 +232,7 @@ struct GgxAnisoLobe {
   static LobeCoordinates Lobe(const double* params) {
     const double ratio =
         std::max(params[kAlphaX], params[kAlphaY]) / std::min(params[kAlphaX], params[kAlphaY]);
-    LobeCoordinates lobe{LobeFrame::kHalfVector, std::sqrt(params[kAlphaX] * params[kAlphaY]),
+    LobeCoordinates lobe{kHalfVectorFrame, std::sqrt(params[kAlphaX] * params[kAlphaY]),
                          &GgxLobe::kLobeDistribution};
     lobe.ring_panels =
         ratio > 1.0 ? static_cast<int>(std::min<double>(std::ceil(8.0 * ratio), kMaxRingPanels))

@@ -31,7 +31,7 @@ struct Lambert {
   static constexpr bool kVanishesAtZero = true;
 
   static std::vector<ParamInfo> Params() { return {DiffuseAlbedoParam()}; }
-  static LobeCoordinates Lobe(const double*) { return {LobeFrame::kNormal, 1.0}; }
+  static LobeCoordinates Lobe(const double*) { return {kNormalFrame, 1.0}; }
   static Rgb LobeWeight(const double* params) { return LoadRgb(params, kRhoD); }
   static double EquivalentExponent(const double*) { return 0.0; }
   // The albedo at every incidence.

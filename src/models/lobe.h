@@ -13,22 +13,26 @@
 
 namespace brdf {
 
-// The axis the lobe is centred on.
-enum class LobeFrame {
-  kNormal,      // about the surface normal in wi (a diffuse term, or no known lobe)
-  kMirror,      // about the mirror direction of wo in wi (phong: cos(alpha) = wi.mirror(wo))
-  kHalfVector,  // about the normal in the half vector h, wi = Reflect(wo, h) (Blinn, microfacets)
-  kRetro,       // about wo itself in wi (a back-scattering lobe, retro: cos(beta) = wi.wo)
+// Where a lobe is centred: about the normal in the half vector h, wi = Reflect(wo, h) (Blinn,
+// microfacets), or about an axis in wi that follows wo: `axis(wo)`, a unit vector above the
+// horizon for every unit wo above it (the mirror direction of wo for phong, wo itself for a
+// back-scattering lobe), or the normal when it is null (a diffuse term, or no known lobe). A
+// model term states its own frame, so a lobe about a new axis is a change to that term's file
+// alone: the integrators and samplers ask the frame, never which one it is.
+struct LobeFrame {
+  bool half_vector = false;
+  Vec3 (*axis)(const Vec3& wo) = nullptr;
+  // How a diagnostic names the angle from the lobe's centre.
+  const char* offset_name = "angle from the normal";
+
+  // Whether the lobe lies about the fixed normal (the cosine's own axis).
+  constexpr bool AboutNormal() const { return !half_vector && axis == nullptr; }
+  // The axis in wi of a lobe about an axis (not a half-vector lobe).
+  Vec3 Axis(const Vec3& wo) const { return axis != nullptr ? axis(wo) : Vec3::UnitZ(); }
 };
 
-// The axis in wi of a lobe about an axis in wi (every frame but kHalfVector): the normal, the
-// mirror direction of wo, or wo itself.
-template <typename T>
-Vec3T<T> LobeAxis(LobeFrame frame, const Vec3T<T>& wo) {
-  if (frame == LobeFrame::kMirror) return Vec3T<T>(-wo.x(), -wo.y(), wo.z());
-  if (frame == LobeFrame::kRetro) return wo;
-  return Vec3T<T>(T(0), T(0), T(1));
-}
+inline constexpr LobeFrame kNormalFrame{};
+inline constexpr LobeFrame kHalfVectorFrame{true, nullptr, "half-vector angle"};
 
 // A rotationally symmetric density p(beta) in solid angle about the lobe's axis, given by three
 // functions of the polar angle beta and the lobe's shape parameter:
@@ -63,7 +67,7 @@ struct LobeDistribution {
 // given). `exponent` is the power-cosine exponent e (also the shape
 // parameter handed to a non-default distribution's functions, e.g. a microfacet alpha).
 struct LobeCoordinates {
-  LobeFrame frame = LobeFrame::kNormal;
+  LobeFrame frame = kNormalFrame;
   double exponent = 1.0;
   const LobeDistribution* distribution = nullptr;  // nullptr: the power cosine
   // Panels of the quadrature's azimuthal rule on each ring about the axis: 1 for a lobe that is

@@ -191,7 +191,7 @@ struct MicrofacetLobe {
   }
 
   static LobeCoordinates Lobe(const double* params) {
-    return {LobeFrame::kHalfVector, params[kAlpha], &Derived::kLobeDistribution};
+    return {kHalfVectorFrame, params[kAlpha], &Derived::kLobeDistribution};
   }
   // The lobe's weight in an importance mixture: Schlick's F averaged over the cosine-weighted
   // hemisphere, f0 + (1 - f0) ∫ (1-c)^5 2c dc = f0 + (1 - f0)/21.

@@ -20,7 +20,8 @@ struct PhongLobe : PowerCosineLobe<PhongLobe> {
   static constexpr const char* kFormula = "rho_s (n+2)/(2pi) cos^n(alpha)";
   static constexpr const char* kExponentName = "n";
   // The lobe is a power cosine about the mirror direction, exactly the sampler's density.
-  static constexpr LobeFrame kFrame = LobeFrame::kMirror;
+  static constexpr LobeFrame kFrame{false, [](const Vec3& wo) { return MirrorDirection(wo); },
+                                    "angle from the mirror direction"};
 
   // Normal-incidence lobe albedo per unit rho_s: 1 by construction (see above), and the
   // largest over incidence.

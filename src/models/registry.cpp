@@ -74,7 +74,7 @@ const ParamInfo* ModelInfo::FindParam(std::string_view param_name) const {
 }
 
 LobeCoordinates ModelInfo::Lobe(const double* p) const {
-  if (!has_lobe()) return {LobeFrame::kNormal, 1.0};
+  if (!has_lobe()) return {kNormalFrame, 1.0};
   return lobes.front().coordinates(p);
 }
 

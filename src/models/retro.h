@@ -38,7 +38,8 @@ struct RetroLobe : PowerCosineLobe<RetroLobe> {
   static constexpr const char* kExponentName = "n_r";
   // A power cosine about wi itself (in wo; by reciprocity the same about wo in wi): the
   // samplers draw exactly the lobe's density.
-  static constexpr LobeFrame kFrame = LobeFrame::kRetro;
+  static constexpr LobeFrame kFrame{false, [](const Vec3& wo) { return wo; },
+                                    "angle from the incident direction"};
 
   static std::vector<ParamInfo> Params() {
     return {{"rho_r", kRhoS, 3, 0.0, std::numeric_limits<double>::infinity(), 0.1,

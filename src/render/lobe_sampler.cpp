@@ -54,15 +54,17 @@ LobeSampler::LobeSampler(const LobeTechnique& technique, const Vec3f& wo)
   exponent_ = static_cast<float>(lobe.exponent);
   normalization_ = static_cast<float>((lobe.exponent + 1.0) * 0.5 * kInvPi);
   inverse_exponent_plus_one_ = static_cast<float>(1.0 / (lobe.exponent + 1.0));
-  if (lobe.frame == LobeFrame::kMirror || lobe.frame == LobeFrame::kRetro) {
-    const Frame frame = Frame::FromZ(LobeAxis(lobe.frame, wo_double_).normalized());
+  if (!lobe.frame.half_vector) {
+    const Vec3 axis = lobe.frame.Axis(wo_double_);
+    const Frame frame = Frame::FromZ(axis.normalized());
     axis_frame_.row(0) = frame.x.cast<float>();
     axis_frame_.row(1) = frame.y.cast<float>();
     axis_frame_.row(2) = frame.z.cast<float>();
+    axis_ = axis.cast<float>();
   }
 }
 
-template <LobeFrame kFrame>
+template <bool kHalfVector>
 BRDF_LANE_FUNCTION void LobeSampler::PowerCosineSample(float u0, float u1, float* x, float* y,
                                                        float* z) const {
   // About +z of the lobe's frame: 1 - cos(beta) = 1 - u^(1/(e+1)), keeping the digits of a
@@ -74,9 +76,7 @@ BRDF_LANE_FUNCTION void LobeSampler::PowerCosineSample(float u0, float u1, float
   SinCosTurn(u1, &sin_phi, &cos_phi);
   const float axis_x = sin_theta * cos_phi, axis_y = sin_theta * sin_phi,
               axis_z = 1.0f - one_minus_cos;
-  if constexpr (kFrame == LobeFrame::kNormal) {
-    *x = axis_x, *y = axis_y, *z = axis_z;
-  } else if constexpr (kFrame == LobeFrame::kMirror || kFrame == LobeFrame::kRetro) {
+  if constexpr (!kHalfVector) {
     // axis_frame_ transposed: its rows are the frame's axes.
     *x = axis_frame_(0, 0) * axis_x + axis_frame_(1, 0) * axis_y + axis_frame_(2, 0) * axis_z;
     *y = axis_frame_(0, 1) * axis_x + axis_frame_(1, 1) * axis_y + axis_frame_(2, 1) * axis_z;
@@ -89,21 +89,13 @@ BRDF_LANE_FUNCTION void LobeSampler::PowerCosineSample(float u0, float u1, float
   }
 }
 
-template <LobeFrame kFrame>
+template <bool kHalfVector>
 BRDF_LANE_FUNCTION float LobeSampler::PowerCosineAxis(float x, float y, float z,
                                                       float* one_minus_cos) const {
-  if constexpr (kFrame == LobeFrame::kNormal) {
-    *one_minus_cos = z > 0.0f ? (x * x + y * y) / (1.0f + std::max(z, 0.0f)) : 2.0f;
-    return 1.0f;
-  } else if constexpr (kFrame == LobeFrame::kMirror) {
-    // |wi - m|^2 = 2 (1 - cos) for unit vectors; beyond 90 deg from m (1 - cos >= 1) the
-    // density is 0.
-    const float dx = x + wo_.x(), dy = y + wo_.y(), dz = z - wo_.z();
-    *one_minus_cos = 0.5f * (dx * dx + dy * dy + dz * dz);
-    return 1.0f;
-  } else if constexpr (kFrame == LobeFrame::kRetro) {
-    // The same about wo itself.
-    const float dx = x - wo_.x(), dy = y - wo_.y(), dz = z - wo_.z();
+  if constexpr (!kHalfVector) {
+    // |wi - axis|^2 = 2 (1 - cos) for unit vectors; beyond 90 deg from the axis (1 - cos >= 1)
+    // the density is 0.
+    const float dx = x - axis_.x(), dy = y - axis_.y(), dz = z - axis_.z();
     *one_minus_cos = 0.5f * (dx * dx + dy * dy + dz * dz);
     return 1.0f;
   } else {
@@ -121,7 +113,7 @@ BRDF_LANE_FUNCTION float LobeSampler::PowerCosineAxis(float x, float y, float z,
   }
 }
 
-template <LobeFrame kFrame>
+template <bool kHalfVector>
 void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count, float* x,
                                      float* y, float* z) const {
   // Into arrays of its own first: writes through x, y, z might alias this sampler's members,
@@ -131,8 +123,8 @@ void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count
   for (int first = 0; first < count; first += kChunk) {
     const int n = std::min(kChunk, count - first);
     for (int k = 0; k < n; ++k) {
-      PowerCosineSample<kFrame>(u0[first + k], u1[first + k], &drawn_x[k], &drawn_y[k],
-                                &drawn_z[k]);
+      PowerCosineSample<kHalfVector>(u0[first + k], u1[first + k], &drawn_x[k], &drawn_y[k],
+                                     &drawn_z[k]);
     }
     std::copy(drawn_x, drawn_x + n, x + first);
     std::copy(drawn_y, drawn_y + n, y + first);
@@ -140,7 +132,7 @@ void LobeSampler::PowerCosineSamples(const float* u0, const float* u1, int count
   }
 }
 
-template <LobeFrame kFrame>
+template <bool kHalfVector>
 BRDF_LANE_FUNCTION void LobeSampler::AxisMisPdfs(const float* x, const float* y, const float* z,
                                                  int count, float* mis_pdf) const {
   constexpr int kChunk = 16;
@@ -151,7 +143,7 @@ BRDF_LANE_FUNCTION void LobeSampler::AxisMisPdfs(const float* x, const float* y,
     int inside = 0;
     for (int k = 0; k < n; ++k) {
       jacobian[k] =
-          PowerCosineAxis<kFrame>(x[first + k], y[first + k], z[first + k], &one_minus_cos[k]);
+          PowerCosineAxis<kHalfVector>(x[first + k], y[first + k], z[first + k], &one_minus_cos[k]);
       inside += static_cast<int>(one_minus_cos[k] <= core);
     }
     // Most light and cosine samples of a narrow lobe fall outside its core: skip the
@@ -205,33 +197,16 @@ void LobeSampler::SampleBatch(const float* u0, const float* u1, int count, float
     }
     return;
   }
-  switch (lobe_.frame) {
-    case LobeFrame::kNormal:
-      return PowerCosineSamples<LobeFrame::kNormal>(u0, u1, count, x, y, z);
-    case LobeFrame::kMirror:
-      return PowerCosineSamples<LobeFrame::kMirror>(u0, u1, count, x, y, z);
-    case LobeFrame::kHalfVector:
-      return PowerCosineSamples<LobeFrame::kHalfVector>(u0, u1, count, x, y, z);
-    case LobeFrame::kRetro:
-      return PowerCosineSamples<LobeFrame::kRetro>(u0, u1, count, x, y, z);
-  }
+  if (lobe_.frame.half_vector) return PowerCosineSamples<true>(u0, u1, count, x, y, z);
+  PowerCosineSamples<false>(u0, u1, count, x, y, z);
 }
 
 float LobeSampler::AxisOneMinusCos(const Vec3f& wi) const {
   float one_minus_cos = 2.0f;
-  switch (lobe_.frame) {
-    case LobeFrame::kNormal:
-      PowerCosineAxis<LobeFrame::kNormal>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
-      break;
-    case LobeFrame::kMirror:
-      PowerCosineAxis<LobeFrame::kMirror>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
-      break;
-    case LobeFrame::kHalfVector:
-      PowerCosineAxis<LobeFrame::kHalfVector>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
-      break;
-    case LobeFrame::kRetro:
-      PowerCosineAxis<LobeFrame::kRetro>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
-      break;
+  if (lobe_.frame.half_vector) {
+    PowerCosineAxis<true>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
+  } else {
+    PowerCosineAxis<false>(wi.x(), wi.y(), wi.z(), &one_minus_cos);
   }
   return one_minus_cos;
 }
@@ -257,18 +232,10 @@ BRDF_LANE_FUNCTION void LobeSampler::MisPdfsIn(const float* x, const float* y, c
                                                int count, float* mis_pdf) const {
   // The distributions are microfacet normals: half-vector lobes.
   if (lobe_.distribution != nullptr) {
-    return AxisMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);
+    return AxisMisPdfs<true>(x, y, z, count, mis_pdf);
   }
-  switch (lobe_.frame) {
-    case LobeFrame::kNormal:
-      return AxisMisPdfs<LobeFrame::kNormal>(x, y, z, count, mis_pdf);
-    case LobeFrame::kMirror:
-      return AxisMisPdfs<LobeFrame::kMirror>(x, y, z, count, mis_pdf);
-    case LobeFrame::kHalfVector:
-      return AxisMisPdfs<LobeFrame::kHalfVector>(x, y, z, count, mis_pdf);
-    case LobeFrame::kRetro:
-      return AxisMisPdfs<LobeFrame::kRetro>(x, y, z, count, mis_pdf);
-  }
+  if (lobe_.frame.half_vector) return AxisMisPdfs<true>(x, y, z, count, mis_pdf);
+  AxisMisPdfs<false>(x, y, z, count, mis_pdf);
 }
 
 float LobeSampler::Pdf(const Vec3f& wi) const {
@@ -289,9 +256,9 @@ float LobeSampler::Pdf(const Vec3f& wi) const {
   }
   const float one_minus_cos = AxisOneMinusCos(wi);
   float jacobian = 1.0f;
-  if (lobe_.frame == LobeFrame::kHalfVector) {
+  if (lobe_.frame.half_vector) {
     float unused;
-    jacobian = PowerCosineAxis<LobeFrame::kHalfVector>(wi.x(), wi.y(), wi.z(), &unused);
+    jacobian = PowerCosineAxis<true>(wi.x(), wi.y(), wi.z(), &unused);
   }
   return PowerCosineDensity(one_minus_cos) * jacobian;
 }
@@ -299,7 +266,7 @@ float LobeSampler::Pdf(const Vec3f& wi) const {
 double LobeSampler::PeakDensity(const LobeCoordinates& lobe) {
   const double at_axis = LobeDensity(lobe, 1.0);
   // A half vector at the normal, seen from the normal, has wo.h = 1: wi's density is a quarter.
-  return lobe.frame == LobeFrame::kHalfVector ? HalfVectorToIncidentPdf(at_axis, 1.0) : at_axis;
+  return lobe.frame.half_vector ? HalfVectorToIncidentPdf(at_axis, 1.0) : at_axis;
 }
 
 }  // namespace brdf

@@ -1,14 +1,14 @@
 // The preview's lobe technique (render/sphere.h) in single precision: the densities of
 // SampleStrategy / StrategyPdf (energy/monte_carlo.h) for one pixel's wo.
 //
-// The power cosine, (e+1)/(2 pi) cos^e(beta) about the normal, the mirror direction or (in the
-// half vector) the normal, is written here in float. Its warp and density carry 1 - cos(beta)
-// instead of cos(beta): near the axis of a sharp lobe (e = 1e4: beta ~ 0.5 deg) the cosine
-// differs from 1 in its fifth digit, and a float cosine would keep one or two digits of what
-// the density depends on. 1 - cos(beta) comes from sines (|a - b|^2 / 2 between unit vectors,
-// or sin^2 / (1 + cos) about the normal), which keep their digits. A lobe with its own
-// distribution (the microfacet models' normals, models/lobe.h) is drawn and evaluated by its
-// own float functions where it has them (ggx), else by energy/monte_carlo.cpp in double.
+// The power cosine, (e+1)/(2 pi) cos^e(beta) about the lobe frame's axis in wi (the normal,
+// the mirror direction, ...) or (in the half vector) about the normal, is written here in float.
+// Its warp and density carry 1 - cos(beta) instead of cos(beta): near the axis of a sharp lobe (e =
+// 1e4: beta ~ 0.5 deg) the cosine differs from 1 in its fifth digit, and a float cosine would keep
+// one or two digits of what the density depends on. 1 - cos(beta) comes from differences of unit
+// vectors (|a - b|^2 / 2, or sin^2 / (1 + cos) of the half vector), which keep their digits. A lobe
+// with its own distribution (the microfacet models' normals, models/lobe.h) is drawn and evaluated
+// by its own float functions where it has them (ggx), else by energy/monte_carlo.cpp in double.
 #pragma once
 
 #include <Eigen/Core>
@@ -92,15 +92,15 @@ class LobeSampler {
   // batch loops (lobe_sampler.cpp): for wi = (x, y, z), AxisOneMinusCos in *one_minus_cos and
   // the factor from the density of the axis variable to that of wi (the half-vector
   // Jacobian; 1 in wi's own frames; 0 where wi has none); and the draw from (u0, u1).
-  template <LobeFrame kFrame>
+  template <bool kHalfVector>
   float PowerCosineAxis(float x, float y, float z, float* one_minus_cos) const;
-  template <LobeFrame kFrame>
+  template <bool kHalfVector>
   void PowerCosineSample(float u0, float u1, float* x, float* y, float* z) const;
-  template <LobeFrame kFrame>
+  template <bool kHalfVector>
   void PowerCosineSamples(const float* u0, const float* u1, int count, float* x, float* y,
                           float* z) const;
   // MisPdfBatch in the lobe's frame (a distribution's: the half vector).
-  template <LobeFrame kFrame>
+  template <bool kHalfVector>
   void AxisMisPdfs(const float* x, const float* y, const float* z, int count, float* mis_pdf) const;
   // Every lobe's MisPdf a batch at a time, through the templates of the lobe's frame; compiled
   // a second time for AVX2 (8 lanes; no FMA, so the same float operations and numbers as the
@@ -127,7 +127,9 @@ class LobeSampler {
   Vec3f wo_;
   Vec3 wo_double_;
   float exponent_ = 1.0f, normalization_ = 1.0f, inverse_exponent_plus_one_ = 0.5f;
-  Eigen::Matrix3f axis_frame_;  // rows: the tangent frame about the axis (mirror direction or wo)
+  // About an axis in wi: the axis, and the tangent frame about it (rows).
+  Vec3f axis_ = Vec3f::UnitZ();
+  Eigen::Matrix3f axis_frame_ = Eigen::Matrix3f::Identity();
   bool avx2_ = Avx2Enabled();
 };
 

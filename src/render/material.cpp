@@ -293,7 +293,7 @@ class TabulatedMaterial : public Material {
     const double bin = kRange[0] / kBins;
     const double theta_half = std::max(h * bin, 0.5 * bin);
     const double exponent = std::max(1.0, std::log(0.5) / std::log(std::cos(theta_half)));
-    return LobeCoordinates{LobeFrame::kHalfVector, exponent};
+    return LobeCoordinates{kHalfVectorFrame, exponent};
   }
 
   // The table for the lookups: a cell is four aligned lanes (red, green, blue, 0), so that a
