@@ -186,6 +186,24 @@ ExportedMaterial GltfDocument(const GltfMaterial& chosen, ExportedMaterial mater
   return material;
 }
 
+// A Lambertian material: specularFactor 0 turns the dielectric's Fresnel off (f0 = f90 = 0),
+// leaving f = baseColor/π. By the specification specularColorFactor and roughness then play no
+// part; they are chosen for importers that read the material through a principled BSDF.
+// Blender 3.4's importer takes its Specular from specularColorFactor alone (0: no lobe), and
+// Disney's diffuse, whose grazing factor F_D90 = 0.5 + 2 roughness cos²θd, is Lambertian at
+// roughness 0.25 where light and view coincide (θd = 0) and keeps F_D90 within 0.5…1 elsewhere,
+// where roughness 1 reaches 2.5 (docs/export.md, "Rendered by Blender").
+GltfMaterial DiffuseOnly(const Rgb& rho_d) {
+  GltfMaterial material;
+  material.base_color = Clamp01(rho_d);
+  material.metallic = 0;
+  material.roughness = 0.25;
+  material.specular = 0;
+  material.specular_color = Rgb::Zero();
+  material.uses_specular_extension = true;
+  return material;
+}
+
 }  // namespace
 
 ExportedMaterial MapToGltf(const MappingInput& input) {
@@ -194,12 +212,7 @@ ExportedMaterial MapToGltf(const MappingInput& input) {
   material.target = Target::kGltf;
   GltfMaterial chosen;
   if (!source.has_lobe) {
-    // specularFactor 0 turns the dielectric's Fresnel off (f0 = f90 = 0): f = baseColor/π.
-    chosen.base_color = Clamp01(source.rho_d);
-    chosen.metallic = 0;
-    chosen.roughness = 1;
-    chosen.specular = 0;
-    chosen.uses_specular_extension = true;
+    chosen = DiffuseOnly(source.rho_d);
     material.material = "pbrMetallicRoughness, metallic 0, KHR_materials_specular specularFactor 0";
     material.exact = (chosen.base_color == source.rho_d).all();
     material.notes.push_back(
@@ -237,9 +250,7 @@ ExportedMaterial MapToGltf(const MappingInput& input) {
     };
     // Diffuse alone (specularFactor 0): glTF's Fresnel rises to f90 = 1 at grazing in both of the
     // others, which a lobe of small f0 (a refit of a broad lobe) does not; then this is closer.
-    GltfMaterial diffuse_only = dielectric;
-    diffuse_only.base_color = Clamp01(source.rho_d);
-    diffuse_only.specular = 0;
+    const GltfMaterial diffuse_only = DiffuseOnly(source.rho_d);
     const bool use_metal = source.rho_d.maxCoeff() <= 0 || error_of(metal) <= error_of(dielectric);
     chosen = use_metal ? metal : dielectric;
     if (source.rho_d.maxCoeff() > 0 && error_of(diffuse_only) < error_of(chosen)) {
