@@ -302,48 +302,63 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement,
     });
     b += noise.common_scale_variance * g * g.transpose();
   }
-  if (noise.light_arm_variance > 0) {
-    // The light arm turns the incidence of group g by e_g (two axes about wi, variance s^2
-    // each): the residuals of its readings change by -scale dF/de e_g, the variables by
-    // A^-1 h_g.e_g with h_g = sum over the group of J^T scale dF/de, adding s^2 h h^T to B per
-    // axis and group. dF/de by central differences one s wide, through the instrument as the
-    // fit predicts.
-    const double s = std::sqrt(noise.light_arm_variance);
-    const std::vector<FitSample>& samples = prepared.samples;
-    const Model& truth = model;
-    std::vector<Rgb> slope[2];
-    for (int axis = 0; axis < 2; ++axis) {
-      std::vector<FitSample> turned[2] = {samples, samples};
-      for (int side = 0; side < 2; ++side) {
-        for (FitSample& sample : turned[side]) {
-          const Frame frame = Frame::FromZ(sample.wi);
-          const Vec3& direction = axis == 0 ? frame.x : frame.y;
-          sample.wi = (sample.wi + (side == 0 ? s : -s) * direction).normalized();
-        }
+  // Derivatives of every sample's channels when one arm turns by (a, b) s about its nominal
+  // direction (the light arm turns wi, the detector arm wo) along the axes of that direction's
+  // frame, by differences one s wide, through the instrument as the fit predicts: d[0], d[1]
+  // the slopes times s, d[2], d[3], d[4] the Hessian's xx, yy, xy times s².
+  const std::vector<FitSample>& samples = prepared.samples;
+  const auto arm_derivatives = [&](bool detector, double s, std::vector<Rgb>* d) {
+    const auto turned_values = [&](double a, double b) {
+      std::vector<FitSample> turned = samples;
+      for (FitSample& sample : turned) {
+        Vec3& w = detector ? sample.wo : sample.wi;
+        const Frame frame = Frame::FromZ(w);
+        w = (w + s * (a * frame.x + b * frame.y)).normalized();
       }
-      std::vector<Rgb> value[2];
-      for (int side = 0; side < 2; ++side) {
-        const SampleNodes turned_nodes =
-            prepared.instrument != nullptr
-                ? InstrumentNodes(*prepared.instrument, truth, turned[side])
-                : SampleNodes{};
-        value[side].resize(samples.size());
-        for (size_t k = 0; k < samples.size(); ++k) {
-          value[side][k] =
-              turned[side][k].wi.z() > 0
-                  ? PredictReading(truth, turned[side],
-                                   prepared.instrument != nullptr ? &turned_nodes : nullptr, k)
-                  : Rgb(Rgb::Zero());
-        }
-      }
-      slope[axis].resize(samples.size());
+      const SampleNodes turned_nodes = prepared.instrument != nullptr
+                                           ? InstrumentNodes(*prepared.instrument, model, turned)
+                                           : SampleNodes{};
+      std::vector<Rgb> value(samples.size());
       for (size_t k = 0; k < samples.size(); ++k) {
-        slope[axis][k] = (value[0][k] - value[1][k]) / (2 * s);
+        value[k] = turned[k].wi.z() > 0 && turned[k].wo.z() > 0
+                       ? PredictReading(model, turned,
+                                        prepared.instrument != nullptr ? &turned_nodes : nullptr, k)
+                       : Rgb(Rgb::Zero());
       }
+      return value;
+    };
+    const std::vector<Rgb> px = turned_values(1, 0), mx = turned_values(-1, 0),
+                           py = turned_values(0, 1), my = turned_values(0, -1);
+    for (int j = 0; j < 5; ++j) d[j].assign(samples.size(), Rgb::Zero());
+    for (size_t k = 0; k < samples.size(); ++k) {
+      d[0][k] = 0.5 * (px[k] - mx[k]);
+      d[1][k] = 0.5 * (py[k] - my[k]);
     }
-    // h per (group, axis), the groups in order of first appearance.
+    const std::vector<Rgb> centre = turned_values(0, 0), pp = turned_values(1, 1),
+                           pm = turned_values(1, -1), mp = turned_values(-1, 1),
+                           mm = turned_values(-1, -1);
+    for (size_t k = 0; k < samples.size(); ++k) {
+      d[2][k] = px[k] - 2 * centre[k] + mx[k];
+      d[3][k] = py[k] - 2 * centre[k] + my[k];
+      d[4][k] = 0.25 * (pp[k] - pm[k] - mp[k] + mm[k]);
+    }
+  };
+  // An arm's turn e (per axis N(0, s²)) shared by a group of rows changes their residuals by
+  // -scale (g.e + e^T H e / 2), the variables by A^-1 times the sum over the group of
+  // J^T scale (...): with h_j = sum J^T scale d_j, B gains h_0 h_0^T + h_1 h_1^T (first order)
+  // and (h_xx h_xx^T + h_yy h_yy^T + 2 h_xy h_xy^T) / 2 (second order: cov(e^T P e, e^T Q e)
+  // = 2 s^4 tr(PQ)). d is already scaled by s and s², so no further factor.
+  const auto add_group = [&](const std::vector<Eigen::VectorXd>& h) {
+    b += h[0] * h[0].transpose() + h[1] * h[1].transpose();
+    b += 0.5 * (h[2] * h[2].transpose() + h[3] * h[3].transpose()) + h[4] * h[4].transpose();
+  };
+  if (noise.light_arm_variance > 0) {
+    // The light arm turns the incidence once for all the readings of that incidence (samples of
+    // equal wi, in order of first appearance).
+    std::vector<Rgb> d[5];
+    arm_derivatives(/*detector=*/false, std::sqrt(noise.light_arm_variance), d);
     std::map<std::tuple<double, double, double>, int> group_of;
-    std::vector<Eigen::VectorXd> h;
+    std::vector<std::vector<Eigen::VectorXd>> h;
     objective.ForEachRow(at, [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
       const size_t k = static_cast<size_t>(row / 3);
       const int c = static_cast<int>(row % 3);
@@ -351,16 +366,33 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement,
       const auto key = std::make_tuple(wi.x(), wi.y(), wi.z());
       auto found = group_of.find(key);
       if (found == group_of.end()) {
-        found = group_of.emplace(key, static_cast<int>(h.size() / 2)).first;
-        h.push_back(Eigen::VectorXd::Zero(a.rows()));
-        h.push_back(Eigen::VectorXd::Zero(a.rows()));
+        found = group_of.emplace(key, static_cast<int>(h.size())).first;
+        h.emplace_back(5, Eigen::VectorXd::Zero(a.rows()));
       }
-      for (int axis = 0; axis < 2; ++axis) {
-        h[2 * found->second + axis] += jacobian * (samples[k].scale[c] * slope[axis][k][c]);
-      }
+      for (int j = 0; j < 5; ++j)
+        h[found->second][j] += jacobian * (samples[k].scale[c] * d[j][k][c]);
     });
-    for (const Eigen::VectorXd& column : h)
-      b += noise.light_arm_variance * column * column.transpose();
+    for (const auto& group : h) add_group(group);
+  }
+  if (noise.detector_arm_variance > 0) {
+    // The detector arm turns each reading's wo by its own e_k, which moves the reading's three
+    // channels together: a group per reading (not the per-channel sum of squares an
+    // independent sigma would give).
+    std::vector<Rgb> d[5];
+    arm_derivatives(/*detector=*/true, std::sqrt(noise.detector_arm_variance), d);
+    std::vector<Eigen::VectorXd> h(5, Eigen::VectorXd::Zero(a.rows()));
+    size_t current = 0;
+    objective.ForEachRow(at, [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
+      const size_t k = static_cast<size_t>(row / 3);
+      const int c = static_cast<int>(row % 3);
+      if (k != current) {
+        add_group(h);
+        for (auto& column : h) column.setZero();
+        current = k;
+      }
+      for (int j = 0; j < 5; ++j) h[j] += jacobian * (samples[k].scale[c] * d[j][k][c]);
+    });
+    add_group(h);
   }
   PredictedErrors errors;
   errors.note = state.held_note;
@@ -463,8 +495,9 @@ double InformationLogDet(const Model& model, const std::vector<DesignPoint>& poi
 }
 
 ExpectedNoise ExpectedNoiseAt(const std::vector<DesignPoint>& points, double common_scale_variance,
-                              double light_arm_variance) {
+                              double light_arm_variance, double detector_arm_variance) {
   ExpectedNoise noise;
+  noise.detector_arm_variance = detector_arm_variance;
   noise.common_scale_variance = common_scale_variance;
   noise.light_arm_variance = light_arm_variance;
   noise.independent_sigma.reserve(points.size());

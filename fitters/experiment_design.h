@@ -97,12 +97,15 @@ struct ExpectedNoise {
   // Variance (radians², per axis) of the light arm's positioning jitter: it moves the incidence
   // once for all the readings of that incidence (samples of equal wi), which shift together.
   double light_arm_variance = 0;
+  // Variance (radians², per axis) of the detector arm's jitter, drawn once per reading and
+  // common to its three channels. When > 0, independent_sigma must leave the detector arm out.
+  double detector_arm_variance = 0;
 };
 
 // The noise of a run at `points`: their independent sigmas, the run's common scale variance and
 // the light arm's jitter variance.
 ExpectedNoise ExpectedNoiseAt(const std::vector<DesignPoint>& points, double common_scale_variance,
-                              double light_arm_variance = 0);
+                              double light_arm_variance = 0, double detector_arm_variance = 0);
 
 // The standard errors `brdf fit` (L2 loss, its default) will report for a measurement of
 // `model` at the geometries of `measurement`, whose `sigma` is the sigma its readings will

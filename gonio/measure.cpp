@@ -212,6 +212,11 @@ Rgb NoiseModel::IndependentSigma(const Vec3& wi, const Vec3& wo) const {
   return SigmaOf(wi, wo, /*include_common=*/false);
 }
 
+Rgb NoiseModel::CountSigma(const Vec3& wi, const Vec3& wo) const {
+  const Rgb reading = sample_.ExpectedReading(instrument_, wi, wo);
+  return calibration_.ExpectedSigma(reading, wo.z(), /*include_reference=*/false);
+}
+
 double NoiseModel::LightArmVariance() const {
   const double jitter = DegToRad(instrument_.jitter_deg);
   return jitter * jitter;

@@ -118,6 +118,13 @@ class NoiseModel {
   // those common parts dominate the stated sigma (the reference's variance grows as the square
   // of the reading, the counts' own as the reading), so a fit's scatter follows this, not Sigma.
   Rgb IndependentSigma(const Vec3& wi, const Vec3& wo) const;
+  // The detector's own noise (shot and read), independent per reading and per channel: the
+  // IndependentSigma without the detector arm's jitter, which moves a reading's three
+  // channels together (DetectorArmVariance).
+  Rgb CountSigma(const Vec3& wi, const Vec3& wo) const;
+  // Variance (radians², per axis) of the detector arm's jitter, drawn once per reading: the
+  // instrument's one jitter, as the light arm's.
+  double DetectorArmVariance() const { return LightArmVariance(); }
   // Relative variance of the scale error common to every value of a run (the reference).
   double CommonScaleVariance() const { return calibration_.ReferenceRelativeVariance(); }
   // Variance (radians², per axis) of the light arm's jitter, common to an incidence's readings.

@@ -25,13 +25,19 @@ template <typename Reading>
 Rgb JitterSigma(const Vec3& w, double sigma, const Reading& reading) {
   if (sigma <= 0) return Rgb::Zero();
   const Frame frame = Frame::FromZ(w);
-  Rgb variance = Rgb::Zero();
-  for (const Vec3& axis : {frame.x, frame.y}) {
-    // The same offsets PerturbDirection makes for (g1, g2) = (±1, 0) and (0, ±1).
-    const Rgb difference =
-        reading((w + sigma * axis).normalized()) - reading((w - sigma * axis).normalized());
-    variance += (0.5 * difference).square();  // (slope · sigma)², slope = difference / 2 sigma
-  }
+  const auto at = [&](double a, double b) {
+    return reading((w + sigma * (a * frame.x + b * frame.y)).normalized());
+  };
+  const Rgb centre = at(0, 0);
+  const Rgb px = at(1, 0), mx = at(-1, 0), py = at(0, 1), my = at(0, -1);
+  // First order: (slope · sigma)² per axis, slope = difference / 2 sigma.
+  Rgb variance = (0.5 * (px - mx)).square() + (0.5 * (py - my)).square();
+  // Second order: for e ~ N(0, sigma² I), var(e^T H e / 2) = sigma^4 tr(H²) / 2, with the
+  // Hessian H (times sigma²) by differences one sigma wide. Where the slope vanishes (a lobe's
+  // peak) this is all of the jitter's scatter.
+  const Rgb hxx = px - 2 * centre + mx, hyy = py - 2 * centre + my;
+  const Rgb hxy = 0.25 * (at(1, 1) - at(1, -1) - at(-1, 1) + at(-1, -1));
+  variance += 0.5 * (hxx.square() + hyy.square() + 2 * hxy.square());
   return variance.sqrt();
 }
 

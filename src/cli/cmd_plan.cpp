@@ -110,7 +110,9 @@ std::vector<fitters::DesignPoint> Geometries(const gonio::Schedule& schedule,
   }
   tbb::parallel_for(size_t{0}, points.size(), [&](size_t k) {
     points[k].sigma = noise.Sigma(points[k].wi, points[k].wo);
-    points[k].independent_sigma = noise.IndependentSigma(points[k].wi, points[k].wo);
+    // The arms' jitter enters the prediction through ExpectedNoise, shared by the readings it
+    // moves together; the independent part is the detector's counts alone.
+    points[k].independent_sigma = noise.CountSigma(points[k].wi, points[k].wo);
   });
   return points;
 }
@@ -137,7 +139,8 @@ fitters::PredictedErrors PredictFit(const Model& model,
                                     const gonio::NoiseModel& noise) {
   return fitters::PredictErrors(
       model, Predicted(model, points, designed, instrument),
-      fitters::ExpectedNoiseAt(points, noise.CommonScaleVariance(), noise.LightArmVariance()));
+      fitters::ExpectedNoiseAt(points, noise.CommonScaleVariance(), noise.LightArmVariance(),
+                               noise.DetectorArmVariance()));
 }
 
 struct Comparison {
