@@ -369,8 +369,9 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement,
         found = group_of.emplace(key, static_cast<int>(h.size())).first;
         h.emplace_back(5, Eigen::VectorXd::Zero(a.rows()));
       }
-      for (int j = 0; j < 5; ++j)
+      for (int j = 0; j < 5; ++j) {
         h[found->second][j] += jacobian * (samples[k].scale[c] * d[j][k][c]);
+      }
     });
     for (const auto& group : h) add_group(group);
   }
