@@ -11,8 +11,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "fitters/covariance.h"
@@ -79,6 +81,31 @@ FitMetrics ComputeMetrics(const FitObjective<M>& objective,
   metrics.log_rmse = std::sqrt(sums.log / sums.weight);
   metrics.cosine_l2 = std::sqrt(sums.cosine / sums.weight);
   return metrics;
+}
+
+// The sandwich's middle term B clustered by incidence: the sum over incidences of s s^T, s the
+// sum of J^T r over the incidence's rows, times G / (G - 1) for G incidences. An instrument's
+// light arm turns all the readings of an incidence at once, and its detector arm a reading's
+// three channels at once, so their residuals move together; B as a sum of per-row squares
+// (objective.h) takes them as independent and understates the spread of fits. (Cameron &
+// Miller 2015, "A practitioner's guide to cluster-robust inference", for the estimator and
+// its small-sample factor.)
+template <typename ModelType>
+Eigen::MatrixXd IncidenceClusteredB(const FitObjective<ModelType>& objective,
+                                    const typename FitObjective<ModelType>::Point& at,
+                                    const std::vector<FitSample>& samples) {
+  std::map<std::tuple<double, double, double>, Eigen::VectorXd> scores;
+  objective.ForEachRow(at, [&](int64_t row, const Eigen::VectorXd& jacobian, double residual) {
+    const Vec3& wi = samples[static_cast<size_t>(row / 3)].wi;
+    auto [found, added] = scores.try_emplace(std::make_tuple(wi.x(), wi.y(), wi.z()));
+    if (added) found->second = Eigen::VectorXd::Zero(jacobian.size());
+    found->second += jacobian * residual;
+  });
+  const double groups = static_cast<double>(scores.size());
+  const int n = scores.empty() ? 0 : static_cast<int>(scores.begin()->second.size());
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n, n);
+  for (const auto& [key, score] : scores) b += score * score.transpose();
+  return groups > 1 ? Eigen::MatrixXd(b * (groups / (groups - 1))) : b;
 }
 
 // Steps 1 and 2 of a fit on the stratified subsample `subset` (of a `designed` schedule or
@@ -228,6 +255,9 @@ FitResult FitComposition(const ModelInfo& info, const PreparedSamples& prepared,
   // the final variables; the criterion from the plain weighted residuals (the loss's, not the
   // robust one).
   if (!have_sums) sums = objective.Sums(at);
+  if (instrument != nullptr && instrument->jitter_deg > 0) {
+    sums.b = IncidenceClusteredB(objective, at, polish_samples);
+  }
   Eigen::MatrixXd covariance;
   result.stderr_values.assign(params.size(), fit_detail::kNaN);
   if (VariableCovariance<ModelType>(options.grey_specular, final_variables, sums, &covariance,
