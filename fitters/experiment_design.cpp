@@ -3,7 +3,6 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <queue>
 #include <tuple>
 
@@ -13,6 +12,7 @@
 #include "core/text.h"
 #include "fitters/covariance.h"
 #include "fitters/fit.h"
+#include "fitters/fit_samples.h"
 #include "fitters/reading_nodes.h"
 
 namespace brdf::fitters {
@@ -307,36 +307,41 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement,
   // frame, by differences one s wide, through the instrument as the fit predicts: d[0], d[1]
   // the slopes times s, d[2], d[3], d[4] the Hessian's xx, yy, xy times s².
   const std::vector<FitSample>& samples = prepared.samples;
+  // The readings with one arm (the detector's, or else the light's) turned by (a, b) s.
+  const auto turned_values = [&](bool detector, double s, double a, double b) {
+    std::vector<FitSample> turned = samples;
+    for (FitSample& sample : turned) {
+      Vec3& w = detector ? sample.wo : sample.wi;
+      const Frame frame = Frame::FromZ(w);
+      w = (w + s * (a * frame.x + b * frame.y)).normalized();
+    }
+    const SampleNodes turned_nodes = prepared.instrument != nullptr
+                                         ? InstrumentNodes(*prepared.instrument, model, turned)
+                                         : SampleNodes{};
+    std::vector<Rgb> value(samples.size());
+    for (size_t k = 0; k < samples.size(); ++k) {
+      value[k] = turned[k].wi.z() > 0 && turned[k].wo.z() > 0
+                     ? PredictReading(model, turned,
+                                      prepared.instrument != nullptr ? &turned_nodes : nullptr, k)
+                     : Rgb(Rgb::Zero());
+    }
+    return value;
+  };
+  // Unturned: the centre of both arms' differences.
+  const std::vector<Rgb> centre = noise.light_arm_variance > 0 || noise.detector_arm_variance > 0
+                                      ? turned_values(false, 0.0, 0.0, 0.0)
+                                      : std::vector<Rgb>();
   const auto arm_derivatives = [&](bool detector, double s, std::vector<Rgb>* d) {
-    const auto turned_values = [&](double a, double b) {
-      std::vector<FitSample> turned = samples;
-      for (FitSample& sample : turned) {
-        Vec3& w = detector ? sample.wo : sample.wi;
-        const Frame frame = Frame::FromZ(w);
-        w = (w + s * (a * frame.x + b * frame.y)).normalized();
-      }
-      const SampleNodes turned_nodes = prepared.instrument != nullptr
-                                           ? InstrumentNodes(*prepared.instrument, model, turned)
-                                           : SampleNodes{};
-      std::vector<Rgb> value(samples.size());
-      for (size_t k = 0; k < samples.size(); ++k) {
-        value[k] = turned[k].wi.z() > 0 && turned[k].wo.z() > 0
-                       ? PredictReading(model, turned,
-                                        prepared.instrument != nullptr ? &turned_nodes : nullptr, k)
-                       : Rgb(Rgb::Zero());
-      }
-      return value;
-    };
-    const std::vector<Rgb> px = turned_values(1, 0), mx = turned_values(-1, 0),
-                           py = turned_values(0, 1), my = turned_values(0, -1);
+    const auto turned = [&](double a, double b) { return turned_values(detector, s, a, b); };
+    const std::vector<Rgb> px = turned(1, 0), mx = turned(-1, 0), py = turned(0, 1),
+                           my = turned(0, -1);
     for (int j = 0; j < 5; ++j) d[j].assign(samples.size(), Rgb::Zero());
     for (size_t k = 0; k < samples.size(); ++k) {
       d[0][k] = 0.5 * (px[k] - mx[k]);
       d[1][k] = 0.5 * (py[k] - my[k]);
     }
-    const std::vector<Rgb> centre = turned_values(0, 0), pp = turned_values(1, 1),
-                           pm = turned_values(1, -1), mp = turned_values(-1, 1),
-                           mm = turned_values(-1, -1);
+    const std::vector<Rgb> pp = turned(1, 1), pm = turned(1, -1), mp = turned(-1, 1),
+                           mm = turned(-1, -1);
     for (size_t k = 0; k < samples.size(); ++k) {
       d[2][k] = px[k] - 2 * centre[k] + mx[k];
       d[3][k] = py[k] - 2 * centre[k] + my[k];
@@ -357,21 +362,14 @@ PredictedErrors Predict(const Model& model, const Measurement& measurement,
     // equal wi, in order of first appearance).
     std::vector<Rgb> d[5];
     arm_derivatives(/*detector=*/false, std::sqrt(noise.light_arm_variance), d);
-    std::map<std::tuple<double, double, double>, int> group_of;
-    std::vector<std::vector<Eigen::VectorXd>> h;
+    int count = 0;
+    const std::vector<int> group = IncidenceGroups(samples, &count);
+    std::vector<std::vector<Eigen::VectorXd>> h(
+        count, std::vector<Eigen::VectorXd>(5, Eigen::VectorXd::Zero(a.rows())));
     objective.ForEachRow(at, [&](int64_t row, const Eigen::VectorXd& jacobian, double) {
       const size_t k = static_cast<size_t>(row / 3);
       const int c = static_cast<int>(row % 3);
-      const Vec3& wi = samples[k].wi;
-      const auto key = std::make_tuple(wi.x(), wi.y(), wi.z());
-      auto found = group_of.find(key);
-      if (found == group_of.end()) {
-        found = group_of.emplace(key, static_cast<int>(h.size())).first;
-        h.emplace_back(5, Eigen::VectorXd::Zero(a.rows()));
-      }
-      for (int j = 0; j < 5; ++j) {
-        h[found->second][j] += jacobian * (samples[k].scale[c] * d[j][k][c]);
-      }
+      for (int j = 0; j < 5; ++j) h[group[k]][j] += jacobian * (samples[k].scale[c] * d[j][k][c]);
     });
     for (const auto& group : h) add_group(group);
   }

@@ -11,10 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <memory>
 #include <string>
-#include <tuple>
 #include <vector>
 
 #include "fitters/covariance.h"
@@ -94,18 +92,16 @@ template <typename ModelType>
 Eigen::MatrixXd IncidenceClusteredB(const FitObjective<ModelType>& objective,
                                     const typename FitObjective<ModelType>::Point& at,
                                     const std::vector<FitSample>& samples) {
-  std::map<std::tuple<double, double, double>, Eigen::VectorXd> scores;
+  int count = 0;
+  const std::vector<int> group = IncidenceGroups(samples, &count);
+  const int n = objective.NumVariables();
+  std::vector<Eigen::VectorXd> scores(count, Eigen::VectorXd::Zero(n));
   objective.ForEachRow(at, [&](int64_t row, const Eigen::VectorXd& jacobian, double residual) {
-    const Vec3& wi = samples[static_cast<size_t>(row / 3)].wi;
-    auto [found, added] = scores.try_emplace(std::make_tuple(wi.x(), wi.y(), wi.z()));
-    if (added) found->second = Eigen::VectorXd::Zero(jacobian.size());
-    found->second += jacobian * residual;
+    scores[group[static_cast<size_t>(row / 3)]] += jacobian * residual;
   });
-  const double groups = static_cast<double>(scores.size());
-  const int n = scores.empty() ? 0 : static_cast<int>(scores.begin()->second.size());
   Eigen::MatrixXd b = Eigen::MatrixXd::Zero(n, n);
-  for (const auto& [key, score] : scores) b += score * score.transpose();
-  return groups > 1 ? Eigen::MatrixXd(b * (groups / (groups - 1))) : b;
+  for (const Eigen::VectorXd& score : scores) b += score * score.transpose();
+  return count > 1 ? Eigen::MatrixXd(b * (count / (count - 1.0))) : b;
 }
 
 // Steps 1 and 2 of a fit on the stratified subsample `subset` (of a `designed` schedule or

@@ -306,6 +306,18 @@ std::vector<FitSample> ModelWeighted(const std::vector<FitSample>& samples,
   return weighted;
 }
 
+std::vector<int> IncidenceGroups(const std::vector<FitSample>& samples, int* count) {
+  std::map<std::tuple<double, double, double>, int> group_of;
+  std::vector<int> groups(samples.size());
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const Vec3& wi = samples[k].wi;
+    const int next = static_cast<int>(group_of.size());
+    groups[k] = group_of.try_emplace(std::make_tuple(wi.x(), wi.y(), wi.z()), next).first->second;
+  }
+  *count = static_cast<int>(group_of.size());
+  return groups;
+}
+
 std::vector<FitSample> Subsample(const std::vector<FitSample>& samples, size_t max_samples,
                                  uint64_t seed) {
   if (max_samples == 0 || samples.size() <= max_samples) return samples;

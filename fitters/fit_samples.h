@@ -148,6 +148,10 @@ std::vector<FitSample> ModelWeighted(const std::vector<FitSample>& samples,
                                      const VarianceFunction& variance,
                                      const std::vector<Rgb>& predicted, Rgb* followed = nullptr);
 
+// The incidence of every sample (samples of equal wi share one), numbered 0, 1, ... in order of
+// first appearance; *count receives the number of incidences.
+std::vector<int> IncidenceGroups(const std::vector<FitSample>& samples, int* count);
+
 // A deterministic stratified subsample of at most `max_samples`: every sample in the top 1% by
 // luminance (the specular peak, which a uniform draw would miss) plus a seeded uniform draw of
 // the rest, whose weights are scaled by the inverse of their inclusion probability so the

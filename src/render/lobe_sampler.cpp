@@ -55,12 +55,10 @@ LobeSampler::LobeSampler(const LobeTechnique& technique, const Vec3f& wo)
   normalization_ = static_cast<float>((lobe.exponent + 1.0) * 0.5 * kInvPi);
   inverse_exponent_plus_one_ = static_cast<float>(1.0 / (lobe.exponent + 1.0));
   if (!lobe.frame.half_vector) {
-    const Vec3 axis = lobe.frame.Axis(wo_double_);
-    const Frame frame = Frame::FromZ(axis.normalized());
+    const Frame frame = Frame::FromZ(lobe.frame.Axis(wo_double_).normalized());
     axis_frame_.row(0) = frame.x.cast<float>();
     axis_frame_.row(1) = frame.y.cast<float>();
     axis_frame_.row(2) = frame.z.cast<float>();
-    axis_ = axis.cast<float>();
   }
 }
 
@@ -95,7 +93,7 @@ BRDF_LANE_FUNCTION float LobeSampler::PowerCosineAxis(float x, float y, float z,
   if constexpr (!kHalfVector) {
     // |wi - axis|^2 = 2 (1 - cos) for unit vectors; beyond 90 deg from the axis (1 - cos >= 1)
     // the density is 0.
-    const float dx = x - axis_.x(), dy = y - axis_.y(), dz = z - axis_.z();
+    const float dx = x - axis_frame_(2, 0), dy = y - axis_frame_(2, 1), dz = z - axis_frame_(2, 2);
     *one_minus_cos = 0.5f * (dx * dx + dy * dy + dz * dz);
     return 1.0f;
   } else {

@@ -127,8 +127,7 @@ class LobeSampler {
   Vec3f wo_;
   Vec3 wo_double_;
   float exponent_ = 1.0f, normalization_ = 1.0f, inverse_exponent_plus_one_ = 0.5f;
-  // About an axis in wi: the axis, and the tangent frame about it (rows).
-  Vec3f axis_ = Vec3f::UnitZ();
+  // About an axis in wi: the tangent frame about it (rows; the last is the axis).
   Eigen::Matrix3f axis_frame_ = Eigen::Matrix3f::Identity();
   bool avx2_ = Avx2Enabled();
 };
