@@ -290,7 +290,7 @@ TEST(NewTerm, ItsOwnLobeFrameGuidesTheIntegratorsAndTheSamplers) {
   const LobeTechnique technique(lobe);
   const LobeSampler sampler(technique, wo.cast<float>());
   EXPECT_LT(testing::DirectionChiSquareZ(
-                [&](const Point2& u) {
+                [&](const Point2& u) -> Vec3 {
                   return sampler.Sample(static_cast<float>(u.x()), static_cast<float>(u.y()))
                       .cast<double>();
                 },
