@@ -36,6 +36,12 @@ constexpr double kFlankEnd = 4.5;
 // albedo of 1e-9.
 constexpr double kVanishedLobeShare = 1e-9;
 
+// A lobe is more than noise when it lowers the residual sum of squares by more than the
+// chi-square quantile of this normal deviate: z = 3.09 is the one-sided 0.1 % point, so a lobe
+// fitted to noise alone passes one time in a thousand, or a few times that, since the fitter also
+// chooses the lobe's width and direction among many (Davies, Biometrika 74(1), 1987).
+constexpr double kLobeSignificanceZ = 3.09;
+
 // Relative standard error beyond which a parameter is not identifiable: the 1-sigma interval
 // of an albedo then includes 0, and an exponent (fitted as log e) is uncertain by more than a
 // factor e, its lobe width by more than a factor sqrt(e) = 1.65.
@@ -216,6 +222,34 @@ void CheckIdentifiability(FitResult* result) {
       }
     }
   }
+}
+
+// The chi-square quantile for `dof` degrees of freedom at normal deviate z, by the cube-root
+// approximation of Wilson & Hilferty (PNAS 17, 1931); within 1 % from 3 degrees of freedom.
+double ChiSquareQuantile(double dof, double z) {
+  const double v = 2.0 / (9.0 * dof);
+  return dof * std::pow(1.0 - v + z * std::sqrt(v), 3);
+}
+
+// The lobe against the model's diffuse term fitted alone to the same samples, loss and weights:
+// a likelihood-ratio (extra sum of squares) test, the residual variance estimated from the
+// lobed fit, s^2 = RSS / (n - p). A lobe that lowers the RSS by less than the quantile in units of
+// s^2 is what noise alone gives: its standard errors may still be smaller than its values, since
+// the fit chose the lobe that fits the noise best.
+void CheckLobeSignificance(const FitResult& diffuse_only, FitResult* result) {
+  const double n = 3.0 * static_cast<double>(result->samples);
+  const double rss = 2.0 * result->final_cost, rss_diffuse = 2.0 * diffuse_only.final_cost;
+  const int extra = result->free_variables - diffuse_only.free_variables;
+  if (!(rss > 0) || extra <= 0 || n <= result->free_variables) return;
+  const double drop = (rss_diffuse - rss) / (rss / (n - result->free_variables));
+  const double needed = ChiSquareQuantile(extra, kLobeSignificanceZ);
+  if (drop >= needed) return;
+  result->warnings.push_back(
+      "not identifiable: the lobe is no more than noise; it lowers the residual sum of squares "
+      "by " +
+      Format("%.3g", drop) + " times the residual variance against " +
+      result->model.info().diffuse + " alone, where noise fitted by " + std::to_string(extra) +
+      " more variables gives up to " + Format("%.3g", needed) + " (0.1 %)");
 }
 
 void CheckCoverage(const std::vector<FitSample>& samples, FitResult* result) {
@@ -400,7 +434,8 @@ ResidualCheck CheckResiduals(const Model& model, const PreparedSamples& prepared
   return check;
 }
 
-void AppendFitDiagnostics(const PreparedSamples& prepared, FitResult* result) {
+void AppendFitDiagnostics(const PreparedSamples& prepared, FitResult* result,
+                          const FitResult* diffuse_only) {
   if (!result->converged) {
     result->warnings.push_back(
         "not converged: the final solve stopped without meeting its "
@@ -409,6 +444,7 @@ void AppendFitDiagnostics(const PreparedSamples& prepared, FitResult* result) {
   }
   CheckIdentifiability(result);
   if (result->model.info().has_lobe() && !LobeVanished(*result)) {
+    if (diffuse_only != nullptr) CheckLobeSignificance(*diffuse_only, result);
     if (prepared.instrument == nullptr) {
       CheckLobeResolution(prepared.samples, result);
     } else {

@@ -3,8 +3,9 @@
 // failure modes of docs/stability.md:
 //
 //   * the lobe is narrower than the sample spacing near the peak (no sample on its flank);
-//   * a parameter is not identifiable (rank-deficient covariance, a vanished lobe, an exponent
-//     at the box of [1, 1e6], or a standard error larger than the value);
+//   * a parameter is not identifiable (rank-deficient covariance, a vanished lobe, a lobe that
+//     lowers the residuals no more than noise would, an exponent at the box of [1, 1e6], or a
+//     standard error larger than the value);
 //   * the data do not reach grazing angles (the model is extrapolated there);
 //   * the final solve did not converge;
 //   * outliers (far more samples beyond 5 robust standard deviations than noise gives);
@@ -56,7 +57,9 @@ struct ResidualCheck {
 ResidualCheck CheckResiduals(const Model& model, const PreparedSamples& prepared);
 
 // Appends every applicable warning to result->warnings, from the fitted model and the samples
-// it was fitted to.
-void AppendFitDiagnostics(const PreparedSamples& prepared, FitResult* result);
+// it was fitted to; `diffuse_only`, when given, is the model's diffuse term fitted alone to the
+// same samples under the same options, against which a lobe must be more than noise.
+void AppendFitDiagnostics(const PreparedSamples& prepared, FitResult* result,
+                          const FitResult* diffuse_only = nullptr);
 
 }  // namespace brdf::fitters

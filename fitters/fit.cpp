@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "core/deterministic_reduce.h"
@@ -93,10 +94,13 @@ FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string&
   return result;
 }
 
-void FinishFit(const PreparedSamples& prepared, FitResult* result) {
+void FinishFit(const PreparedSamples& prepared, const FitOptions& options, FitResult* result) {
   const auto start = std::chrono::steady_clock::now();
   CheckFitEnergy(result);
-  AppendFitDiagnostics(prepared, result);  // docs/stability.md
+  const ModelInfo& info = result->model.info();
+  std::optional<FitResult> diffuse_only;
+  if (info.has_lobe()) diffuse_only.emplace(FitPreparedSamples(prepared, info.diffuse, options));
+  AppendFitDiagnostics(prepared, result, diffuse_only ? &*diffuse_only : nullptr);  // stability.md
   if (prepared.instrument != nullptr) {
     const std::string blur = ApertureBlurWarning(*prepared.instrument, result->model);
     if (!blur.empty()) result->warnings.push_back(blur);
@@ -113,7 +117,7 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
   resolved.loss = ResolveLoss(options.loss, measurement);
   PreparedSamples prepared = PrepareSamples(measurement, resolved.loss);
   FitResult result = FitPreparedSamples(prepared, model_name, resolved);
-  FinishFit(prepared, &result);
+  FinishFit(prepared, resolved, &result);
   Release(&prepared);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -115,7 +115,9 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
 // whose samples had the same Subsample); when given and not found, it receives this fit's.
 FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string& model_name,
                              const FitOptions& options, SubsampleOptimum* optimum = nullptr);
-// The energy check (energy_check.h) and the warnings (diagnostics.h) of a fit of `prepared`.
-void FinishFit(const PreparedSamples& prepared, FitResult* result);
+// The energy check (energy_check.h) and the warnings (diagnostics.h) of a fit of `prepared`
+// under `options`; a model with a lobe is compared with its diffuse term fitted alone under the
+// same options (is the lobe more than noise?).
+void FinishFit(const PreparedSamples& prepared, const FitOptions& options, FitResult* result);
 
 }  // namespace brdf::fitters

@@ -9,13 +9,13 @@
 #include <limits>
 #include <map>
 #include <numeric>
-#include <random>
 #include <tuple>
 
 #include "core/angles.h"
 #include "core/colour.h"
 #include "core/enum_names.h"
 #include "core/errors.h"
+#include "core/rng.h"
 #include "fitters/image_error.h"
 #include "io/merl.h"
 
@@ -349,11 +349,11 @@ std::vector<FitSample> Subsample(const std::vector<FitSample>& samples, size_t m
   subset.reserve(max_samples);
   for (size_t k = 0; k < peak_count; ++k) subset.push_back(samples[order[k]]);
   // The rest: a seeded partial Fisher-Yates draw.
-  std::mt19937_64 random(seed);
+  Rng random(0, seed);
   const size_t rest = samples.size() - peak_count, drawn = max_samples - peak_count;
   for (size_t k = 0; k < drawn; ++k) {
-    std::uniform_int_distribution<size_t> pick(k, rest - 1);
-    std::swap(order[peak_count + k], order[peak_count + pick(random)]);
+    const size_t pick = k + random.Below(rest - k);
+    std::swap(order[peak_count + k], order[peak_count + pick]);
     FitSample sample = samples[order[peak_count + k]];
     const double inverse_inclusion = static_cast<double>(rest) / drawn;
     sample.weight *= inverse_inclusion;

@@ -39,7 +39,7 @@ Loss ResolveLoss(Loss loss, const Measurement& measurement);
 // 104 bytes: a MERL table has a million of them. What follows from these (cos theta_i, the
 // loss's target) is computed where it is used rather than stored.
 struct FitSample {
-  Vec3 wi, wo;
+  Vec3 wi = Vec3::UnitZ(), wo = Vec3::UnitZ();
   Rgb value = Rgb::Zero();  // the data in sr^-1
   Rgb scale = Rgb::Ones();  // sqrt(weight) / sigma per channel: the residual multiplier
   double weight = 1;        // solid-angle weight times the file's weight (mean 1 over the set)

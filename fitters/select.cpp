@@ -198,7 +198,7 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& given_o
   // The energy check and the diagnostics cost more than many fits of a small file: only the
   // chosen fit gets them, unless the caller keeps every fit.
   for (size_t k = 0; k < fits.size(); ++k) {
-    if (k == best || all_fits != nullptr) FinishFit(prepared, &fits[k]);
+    if (k == best || all_fits != nullptr) FinishFit(prepared, options, &fits[k]);
   }
   Release(&prepared);
   const FitResult& chosen = fits[best];
