@@ -159,6 +159,55 @@ TEST(RglBsdf, EvaluationAtGridNodesIsTheStoredValueTimesTheJacobianFactor) {
   EXPECT_GT(checked, 500);
 }
 
+// Local extrema of a sequence: the turns of a curve that should fall monotonically.
+int Turns(const std::vector<double>& values) {
+  int turns = 0;
+  for (size_t k = 2; k < values.size(); ++k) {
+    turns += (values[k] - values[k - 1]) * (values[k - 1] - values[k - 2]) < 0;
+  }
+  return turns;
+}
+
+// The preview evaluator of an RGL file keeps every node's value (f at the nodes is the
+// reference's) and interpolates f cos(theta_o) between them, so it draws no ring that the
+// nodes do not have. On cc_ibiza_sunset at the incidence node 29.6 deg, the nodes on the light's
+// side of the plane of incidence fall monotonically from the normal to 65 deg (0.030 to 3e-5);
+// the reference's interpolation of the stored value times ndf(wm) turns 12 times there (the
+// rings on a sphere), the preview's not once.
+TEST(RglBsdf, PreviewKeepsTheNodesAndDrawsNoRingsBetweenThem) {
+  const TensorFile file = TensorFile::Read(DataPath("rgl-bsdf/cc_ibiza_sunset_rgb.bsdf"));
+  const std::shared_ptr<const RglBrdf> brdf = RglBrdf::FromTensor(file);
+  const std::shared_ptr<const TabulatedBrdf> preview = brdf->PreviewEvaluator();
+  ASSERT_NE(preview, nullptr);
+  int checked = 0;
+  for (int t = 1; t < 7; ++t) {
+    for (int row = 0; row < brdf->rows(); row += 3) {
+      for (int col = 1; col < brdf->cols(); col += 2) {
+        const RglBrdf::Node node = brdf->GridNode(0, t, row, col);
+        if (node.wo.z() < 0.05) continue;
+        const Rgb reference = brdf->Eval(node.wi, node.wo), drawn = preview->Eval(node.wi, node.wo);
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(drawn[c], reference[c], 1e-7 * reference[c] + 1e-12)
+              << "theta_i " << t << " row " << row << " col " << col << " channel " << c;
+        }
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 500);
+  const double theta_i = brdf->theta_i()[1];
+  ASSERT_NEAR(RadToDeg(theta_i), 29.62, 0.01);
+  const Vec3 wi = SphericalDirection(theta_i, 0);
+  std::vector<double> reference, drawn;
+  for (int k = 0; k <= 400; ++k) {
+    const Vec3 wo = SphericalDirection(DegToRad(65.0 * k / 400), 0);
+    reference.push_back(brdf->EvalCosine(wi, wo)[0]);
+    drawn.push_back(preview->Eval(wi, wo)[0] * wo.z());
+  }
+  EXPECT_GE(Turns(reference), 10);
+  EXPECT_EQ(Turns(drawn), 0);
+}
+
 // The measurement's samples are those nodes: same directions, the file's values divided by
 // cos(theta_o).
 TEST(RglBsdf, TheCellMeasureWeighsTheFitWithoutTheEvaluator) {

@@ -244,6 +244,26 @@ std::shared_ptr<const RglBrdf> RglBrdf::FromTensor(const TensorFile& file,
                "field 'jacobian' is " + FormatNumber(flag) + ", expected 0 or 1");
   }
   brdf->jacobian_ = flag == 1.0;
+  if (brdf->jacobian_) {
+    std::shared_ptr<RglBrdf> preview(new RglBrdf(*brdf));
+    for (int p = 0; p < static_cast<int>(n_phi); ++p) {
+      for (int t = 0; t < static_cast<int>(n_theta); ++t) {
+        for (int row = 0; row < brdf->rows_; ++row) {
+          for (int col = 0; col < brdf->cols_; ++col) {
+            const double factor = brdf->GridNode(p, t, row, col).jacobian_factor;
+            for (int c = 0; c < 3; ++c) {
+              const int64_t slice = (int64_t{p} * static_cast<int64_t>(n_theta) + t) * 3 + c;
+              preview->rgb_values_[(slice * brdf->rows_ + row) * brdf->cols_ + col] *= factor;
+            }
+          }
+        }
+      }
+    }
+    preview->rgb_ = Warp2D(brdf->cols_, brdf->rows_, preview->rgb_values_,
+                           {brdf->phi_i_, brdf->theta_i_, {0.0, 1.0, 2.0}}, false);
+    preview->factor_in_table_ = true;
+    brdf->preview_ = std::move(preview);
+  }
   return brdf;
 }
 
@@ -272,7 +292,7 @@ Rgb RglBrdf::EvalCosine(const Vec3& wi, const Vec3& wo) const {
     // interpolation, per channel.
     value[c] = std::max(0.0, rgb_.Eval(sample, parameters));
   }
-  if (jacobian_) value *= ndf_.Eval(u_wm) / (4.0 * sigma_.Eval(u_wi));
+  if (jacobian_ && !factor_in_table_) value *= ndf_.Eval(u_wm) / (4.0 * sigma_.Eval(u_wi));
   return value;
 }
 
@@ -352,14 +372,21 @@ std::string RglBrdf::Name() const {
   return "RGL grid cell measure (warped node cell solid angle times the theta_i band)";
 }
 
-std::string RglBrdf::LookupName() const { return "RGL-EPFL tensor through the inverse VNDF warp"; }
+std::string RglBrdf::LookupName() const {
+  return factor_in_table_
+             ? "RGL-EPFL tensor through the inverse VNDF warp, f cos(theta_o) interpolated"
+             : "RGL-EPFL tensor through the inverse VNDF warp";
+}
 
 std::string RglBrdf::Describe() const {
   return "RGL-EPFL tensor (Dupuy & Jakob 2018): half vector -> inverse VNDF warp -> " +
          std::to_string(rows_) + "x" + std::to_string(cols_) +
          " table, bilinear, linear between the " + std::to_string(theta_i_.size()) +
          " theta_i nodes; negative channels clipped to 0; f = stored value" +
-         (jacobian_ ? " x ndf/(4 sigma)" : "") + " / cos(theta_o), " +
+         (!jacobian_         ? ""
+          : factor_in_table_ ? " x ndf/(4 sigma) at the nodes"
+                             : " x ndf/(4 sigma)") +
+         " / cos(theta_o), " +
          (reciprocal_ ? std::string("read with the more grazing direction as the light "
                                     "(the reciprocal reading, on request)")
                       : std::string("wi the tensor's incidence (the reference reading of the "

@@ -53,6 +53,12 @@ class RglBrdf : public TabulatedBrdf, public CellMeasure {
   Rgb EvalCosine(const Vec3& wi, const Vec3& wo) const;
   std::string Describe() const override;
   std::string LookupName() const override;
+  // For previews (DESIGN §8): the table of f cos(theta_o) at the nodes, the jacobian factor
+  // included, interpolated as the stored values are. The nodes keep their values; between
+  // them the reference interpolates the stored value and multiplies by ndf(wm), whose fall
+  // over a cell the stored values undo at the nodes only, which scallops f between the nodes
+  // into rings on a sphere (docs/hdr.md).
+  std::shared_ptr<const TabulatedBrdf> PreviewEvaluator() const override { return preview_; }
   double Measure(const Vec3& wi, const Vec3& wo) const override;  // CellMeasure
   std::string Name() const override;
 
@@ -87,6 +93,8 @@ class RglBrdf : public TabulatedBrdf, public CellMeasure {
   std::vector<double> theta_i_, phi_i_;
   int rows_ = 0, cols_ = 0;
   bool isotropic_ = true, jacobian_ = true, reciprocal_ = false;
+  bool factor_in_table_ = false;  // rgb_ holds stored x jacobian factor (the preview's table)
+  std::shared_ptr<const RglBrdf> preview_;
   Warp2D ndf_, sigma_, vndf_, rgb_;
   std::vector<double> rgb_values_;  // [phi_i, theta_i, 3, rows, cols], as stored
   int64_t clipped_negative_ = 0;

@@ -5,8 +5,9 @@
 //   * Dense tables go through the reader's evaluator for previews (TabulatedBrdf::
 //     PreviewEvaluator, else Measurement::tabulated): MERL trilinear in its own grid with
 //     missing cells filled from the nearest valid one (io/merl_preview.h), RGL-EPFL through the
-//     inverse VNDF warp. Under an environment they are importance-sampled by a sampler built
-//     from those values (render/table_sampler.h): they have no lobe formula.
+//     inverse VNDF warp with f cos(theta_o) interpolated between the nodes (io/rgl_bsdf.h). Under
+//     an environment they are importance-sampled by a sampler built from those values
+//     (render/table_sampler.h): they have no lobe formula.
 //   * Scattered measurements (Cornell, Zemax, native CSV) use the same inverse-distance
 //     interpolant as `brdf energy` (energy/measured.h), tabulated once at the cell centres of
 //     the isotropic half/difference space (theta_h, theta_d in [0, pi/2], phi_d folded into
