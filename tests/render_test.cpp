@@ -114,6 +114,43 @@ TEST(Render, WhiteFurnaceSharpLobesRenderTheirDirectionalAlbedo) {
   }
 }
 
+// A composition's two lobes in either order are the same material, and the renderer draws from
+// the sharper whichever comes first: both orders render the same white-furnace image, equally
+// clean (7.6 % relative standard error per pixel at 16 spp). Drawing from the first lobe only,
+// the order with the sharp lobe second left it to the environment and the cosine techniques:
+// 12.5 %, with fireflies.
+TEST(Render, TwoLobesRenderAsCleanInEitherOrder) {
+  const Environment furnace = Environment::Uniform(Rgb::Ones());
+  RenderOptions options;
+  options.size = 40;
+  options.spp = 16;
+  const char* kOrders[] = {"lambert+ggx+ggx:rho_d=0.1:f0=0.04:alpha=0.005:f0_2=0.04:alpha_2=0.3",
+                           "lambert+ggx+ggx:rho_d=0.1:f0=0.04:alpha=0.3:f0_2=0.04:alpha_2=0.005"};
+  const RenderResult sharp_first = RenderSphere(*LoadMaterial(kOrders[0]), {}, &furnace, options);
+  const RenderResult sharp_second = RenderSphere(*LoadMaterial(kOrders[1]), {}, &furnace, options);
+  double first_error = 0, second_error = 0;
+  int checked = 0;
+  for (int y = 0; y < options.size; ++y) {
+    for (int x = 0; x < options.size; ++x) {
+      const std::optional<Vec3> normal = SphereNormal(x, y, options.size);
+      if (!normal || normal->z() < 0.5) continue;
+      const size_t k = static_cast<size_t>(y * options.size + x);
+      const double a = sharp_first.radiance.pixel(x, y)[1],
+                   b = sharp_second.radiance.pixel(x, y)[1];
+      const double error_a = sharp_first.luminance_std_error[k];
+      const double error_b = sharp_second.luminance_std_error[k];
+      EXPECT_NEAR(a, b, 5.0 * std::hypot(error_a, error_b)) << x << "," << y;
+      first_error += error_a / a;
+      second_error += error_b / b;
+      ++checked;
+    }
+  }
+  ASSERT_GT(checked, 500);
+  EXPECT_LT(first_error / checked, 0.1);
+  EXPECT_LT(second_error / checked, 0.1);
+  EXPECT_NEAR(second_error / first_error, 1.0, 0.25);
+}
+
 TEST(Render, DirectionalLightGivesFTimesIrradianceTimesCosine) {
   const Model model = ParseModel("blinn-phong:rho_d=0.5,0.3,0.1:rho_s=0.2:m=40");
   const std::unique_ptr<Material> material = LoadMaterial(model.ToString());

@@ -85,8 +85,19 @@ constexpr double kFloatExponentLimit = 1e-3 * 0x1.0p24;
 class ModelMaterial : public Material {
  public:
   explicit ModelMaterial(Model model) : model_(std::move(model)) {
-    // The model knows its own lobe: frame and density (models/lobe.h).
-    if (model_.info().has_lobe() && model_.LobeWeight().maxCoeff() > 0.0) lobe_ = model_.Lobe();
+    // The model knows its lobes: frame and density (models/lobe.h). The renderer draws from
+    // one, the sharpest that has any weight, in whatever order the composition names them: a
+    // broader lobe is found by the cosine technique, and a sharp lobe left to it would show as
+    // fireflies (sphere.cpp).
+    const double* params = model_.params().data();
+    double drawn_exponent = -1;
+    for (const LobeInfo& lobe : model_.info().lobes) {
+      const double exponent = lobe.equivalent_exponent(params);
+      if (lobe.weight(params).maxCoeff() > 0.0 && exponent > drawn_exponent) {
+        drawn_exponent = exponent;
+        lobe_ = lobe.coordinates(params);
+      }
+    }
     params_float_.assign(model_.params().begin(), model_.params().end());
     double sharpest = 0;
     for (const LobeInfo& lobe : model_.info().lobes) {
