@@ -12,8 +12,11 @@ namespace {
 // positioning jitter (Gaussian, sigma per axis, measure.cpp) blurs the expected reading, and a
 // cone of radius a has per-axis variance a²/4, so the jittered cone's second moments are those
 // of radius sqrt(a² + 4 sigma²). A lobe seen through it is blurred as the mean of the jittered
-// readings is, up to the fourth moments (relative (sigma/a)^4: 1e-5 for the default instrument's
-// detector). A point lamp's spot is kept as it is.
+// readings is up to the second moments. The fourth radial moments differ: the jittered cone's is
+// a⁴/3 + 4 a² sigma² + 8 sigma⁴, the widened cone's a⁴/3 + (8/3) a² sigma² + (16/3) sigma⁴,
+// short by 4 sigma²/a² relative to leading order (1 % for the default instrument's detector,
+// 16 % for its source), which a lobe about as narrow as the detector feels (docs/planning.md).
+// A point lamp's spot is kept as it is.
 Instrument Jittered(const Instrument& instrument) {
   Instrument jittered = instrument;
   const double sigma = DegToRad(instrument.jitter_deg);
