@@ -1,6 +1,8 @@
 #include "gonio/forward_model.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/angles.h"
 #include "gonio/measure.h"
@@ -8,37 +10,79 @@
 namespace brdf::gonio {
 namespace {
 
-// The instrument whose apertures' second moments are those of the jittered ones: the arms'
-// positioning jitter (Gaussian, sigma per axis, measure.cpp) blurs the expected reading, and a
-// cone of radius a has per-axis variance a²/4, so the jittered cone's second moments are those
-// of radius sqrt(a² + 4 sigma²). A lobe seen through it is blurred as the mean of the jittered
-// readings is up to the second moments. The fourth radial moments differ: the jittered cone's is
-// a⁴/3 + 4 a² sigma² + 8 sigma⁴, the widened cone's a⁴/3 + (8/3) a² sigma² + (16/3) sigma⁴,
-// short by 4 sigma²/a² relative to leading order (1 % for the default instrument's detector,
-// 16 % for its source), which a lobe about as narrow as the detector feels (docs/planning.md).
-// A point lamp's spot is kept as it is.
-Instrument Jittered(const Instrument& instrument) {
-  Instrument jittered = instrument;
-  const double sigma = DegToRad(instrument.jitter_deg);
-  if (sigma <= 0) return jittered;
-  const auto widen = [&](double radius) { return std::sqrt(radius * radius + 4 * sigma * sigma); };
-  if (instrument.source_kind == Instrument::SourceKind::kCollimated) {
-    jittered.source_angular_radius_deg = RadToDeg(widen(instrument.SourceAngularRadius()));
+// The aperture rule of a cone of angular radius `radius` (ApertureQuadrature: the rule the
+// virtual instrument integrates with) as the forward model uses it when the arm that carries
+// the cone is jittered (Gaussian, `sigma` radians per axis, measure.cpp). The mean of the
+// jittered readings integrates the model over the rule's points each displaced by the jitter.
+// For an isotropic spread of offsets z about the nominal direction (the rule's spokes, at least
+// five, are isotropic to fourth order), that mean agrees with the model's own average over a
+// rule of the same offsets' radial moments E|z|² and E|z|⁴ up to fifth order in z. A point at
+// angle r displaced by the jitter has E|z|² = r² + 2 sigma² and E|z|⁴ = r⁴ + 8 sigma² r² +
+// 8 sigma⁴. The rule keeps its points and weights and moves each ring from r² to a + b r², a and
+// b chosen to match both moments of the jittered rule. A rule of one ring cannot: it gets a
+// point at the centre besides. A point aperture is widened to the cone of radius 2 sigma, whose
+// second moment is the jitter's. Returns the rule; *encoding is the radius of the cone its area
+// fractions u1 refer to (radius, or the widened one).
+std::vector<AperturePoint> JitteredRule(double radius, double lobe_width, double sigma,
+                                        double* encoding) {
+  *encoding = radius;
+  std::vector<AperturePoint> rule = ApertureQuadrature(radius, lobe_width);
+  if (sigma <= 0) return rule;
+  const double one_minus_cos = 1 - std::cos(radius);
+  std::vector<double> r2(rule.size());
+  double mean = 0, square = 0;
+  for (size_t k = 0; k < rule.size(); ++k) {
+    const double r = std::acos(std::max(-1.0, 1 - rule[k].u1 * one_minus_cos));
+    r2[k] = r * r;
+    mean += rule[k].weight * r2[k];
+    square += rule[k].weight * r2[k] * r2[k];
   }
-  const double detector = widen(std::acos(instrument.DetectorCosHalfAngle()));
-  jittered.detector_solid_angle_sr = 2 * kPi * (1 - std::cos(detector));
-  return jittered;
+  const double spread = square - mean * mean;  // of r² over the rule
+  const double s2 = sigma * sigma;
+  if (!(mean > 0)) {  // a point aperture
+    *encoding = 2 * sigma;
+    return ApertureQuadrature(*encoding, lobe_width);
+  }
+  if (!(spread > 1e-12 * mean * mean)) {
+    // One ring at r: moved to rho² = E|z|⁴ / E|z|² with the weight w = (E|z|²)² / E|z|⁴, and
+    // the centre holding the rest, 1 - w, match both moments.
+    const double second = mean + 2 * s2, fourth = square + 8 * s2 * mean + 8 * s2 * s2;
+    const double rho = std::sqrt(fourth / second), share = second * second / fourth;
+    for (AperturePoint& point : rule) {
+      point.u1 = (1 - std::cos(rho)) / one_minus_cos;
+      point.weight *= share;
+    }
+    rule.push_back({0.0, 0.0, 1 - share});
+    return rule;
+  }
+  const double jittered_spread = spread + 4 * s2 * mean + 4 * s2 * s2;
+  const double b = std::sqrt(jittered_spread / spread), a = mean + 2 * s2 - b * mean;
+  for (size_t k = 0; k < rule.size(); ++k) {
+    const double r = std::sqrt(std::max(0.0, a + b * r2[k]));
+    rule[k].u1 = (1 - std::cos(r)) / one_minus_cos;
+  }
+  return rule;
 }
 
 }  // namespace
 
 ForwardModel::ForwardModel(const Instrument& instrument, double lobe_width)
-    : instrument_(Jittered(instrument)),
-      // As ModelSample integrates: the source cone as densely as the detector cone, relative to
-      // its own radius (model_sample.cpp).
-      source_quadrature_(ApertureQuadrature(instrument_.SourceAngularRadius(), lobe_width)),
-      detector_quadrature_(
-          ApertureQuadrature(std::acos(instrument_.DetectorCosHalfAngle()), lobe_width)) {
+    : instrument_(instrument) {
+  // As ModelSample integrates: the source cone as densely as the detector cone, relative to its
+  // own radius (model_sample.cpp). A point lamp's spot is kept as it is.
+  const double sigma = DegToRad(instrument.jitter_deg);
+  double source = instrument.SourceAngularRadius();
+  if (instrument.source_kind == Instrument::SourceKind::kCollimated) {
+    source_quadrature_ = JitteredRule(source, lobe_width, sigma, &source);
+    instrument_.source_angular_radius_deg = RadToDeg(source);
+  } else {
+    source_quadrature_ = ApertureQuadrature(source, lobe_width);
+  }
+  const double detector = std::acos(instrument.DetectorCosHalfAngle());
+  double encoding = detector;
+  detector_quadrature_ = JitteredRule(detector, lobe_width, sigma, &encoding);
+  if (encoding != detector)
+    instrument_.detector_solid_angle_sr = 2 * kPi * (1 - std::cos(encoding));
   const double ideal =
       instrument.reference_rho * kInvPi * std::cos(DegToRad(instrument.reference_theta_o_deg));
   calibration_ = ideal / ReferenceReading(instrument);

@@ -6,9 +6,10 @@
 // apertures and R_norm its ideal value (measure.h, Calibration), with R by the same quadrature
 // the virtual instrument integrates with (aperture.h: the lobe-width rule). Hence
 //   value = sum over nodes of weight · f(wi_node, wo_node).
-// The arms' positioning jitter blurs the mean reading further: the apertures are widened to
-// the jittered ones' second moments (forward_model.cpp). Not modelled: stray light (an offset,
-// 0 by default).
+// The arms' positioning jitter blurs the mean reading further: each aperture's rule is moved
+// to the second and fourth radial moments of its points displaced by the jitter
+// (forward_model.cpp). Not modelled: stray light (an
+// offset, 0 by default).
 #pragma once
 
 #include <vector>
@@ -32,7 +33,7 @@ class ForwardModel {
   }
 
  private:
-  Instrument instrument_;  // with the apertures widened by the jitter
+  Instrument instrument_;  // a point aperture widened by the jitter
   std::vector<AperturePoint> source_quadrature_, detector_quadrature_;
   double calibration_ = 1;  // R_norm / R_ref
 };

@@ -19,6 +19,7 @@
 #include "fitters/objective.h"
 #include "fitters/reading_nodes.h"
 #include "fitters/residual.h"
+#include "gonio/forward_model.h"
 #include "gonio/measure.h"
 #include "gonio/model_sample.h"
 #include "gonio/schedule.h"
@@ -85,6 +86,62 @@ TEST(InstrumentFit, ForwardModelIsTheInstrumentsReading) {
       EXPECT_GT(largest_nominal_error, 0.05);
       EXPECT_GT(nodes.averaged, 0u);
       EXPECT_LT(nodes.averaged, samples.size());
+    }
+  }
+}
+
+// The second and fourth moments of the angle between each node's direction and the nominal
+// one, over the nodes of one reading, weighted as the reading weighs them (the detector's
+// cos(theta_o) taken out): `of_source` picks wi, else wo.
+std::pair<double, double> NodeMoments(const std::vector<gonio::ReadingNode>& nodes,
+                                      const Vec3& nominal, bool of_source) {
+  double total = 0, second = 0, fourth = 0;
+  for (const gonio::ReadingNode& node : nodes) {
+    const Vec3& w = of_source ? node.wi : node.wo;
+    const double weight = node.weight / node.wo.z();
+    const double angle = std::acos(std::min(1.0, w.dot(nominal)));
+    total += weight;
+    second += weight * angle * angle;
+    fourth += weight * std::pow(angle, 4);
+  }
+  return {second / total, fourth / total};
+}
+
+// Through positioning jitter (Gaussian, sigma per axis) a point of an aperture's rule at angle r
+// lands at E|z|^2 = r^2 + 2 sigma^2 and E|z|^4 = r^4 + 8 sigma^2 r^2 + 8 sigma^4 from the nominal
+// direction. The forward model's nodes have those moments over the virtual instrument's own
+// rule, for the two-ring detector and the one-ring source of a ggx alpha 0.02 lobe, and, without
+// jitter, the rule's own. (Apertures widened to the jittered second moments alone, as before,
+// missed the fourth by 0.9 % and 11 % on the detector at 0.05 and 0.2 deg, 20 % and 48 % on the
+// source.)
+TEST(InstrumentFit, ForwardModelHasTheJitteredRulesSecondAndFourthMoments) {
+  const Model model = LoadModel("ggx:rho_d=0.1:f0=0.04:alpha=0.02");
+  const double width = gonio::LobeWidth(model);
+  const Vec3 wi = SphericalDirection(DegToRad(30), 0), wo = SphericalDirection(DegToRad(20), kPi);
+  for (double jitter_deg : {0.0, 0.05, 0.2}) {
+    gonio::Instrument instrument;
+    instrument.jitter_deg = jitter_deg;
+    const double s2 = std::pow(DegToRad(jitter_deg), 2);
+    const gonio::ForwardModel forward(instrument, width);
+    std::vector<gonio::ReadingNode> nodes;
+    forward.AppendNodes(wi, wo, &nodes);
+    for (bool of_source : {true, false}) {
+      const double radius = of_source ? instrument.SourceAngularRadius()
+                                      : std::acos(instrument.DetectorCosHalfAngle());
+      const std::vector<gonio::AperturePoint> rule = gonio::ApertureQuadrature(radius, width);
+      double rings = 0, second = 0, fourth = 0;
+      for (const gonio::AperturePoint& point : rule) {
+        const double r2 = std::pow(std::acos(1 - point.u1 * (1 - std::cos(radius))), 2);
+        second += point.weight * (r2 + 2 * s2);
+        fourth += point.weight * (r2 * r2 + 8 * s2 * r2 + 8 * s2 * s2);
+        rings += point.u1 != rule.front().u1;
+      }
+      const auto [node_second, node_fourth] = NodeMoments(nodes, of_source ? wi : wo, of_source);
+      SCOPED_TRACE(std::string(of_source ? "source" : "detector") + " jitter " +
+                   std::to_string(jitter_deg));
+      EXPECT_EQ(rings > 0, !of_source);  // the detector's rule has two rings, the source's one
+      EXPECT_NEAR(node_second, second, 1e-4 * second);
+      EXPECT_NEAR(node_fourth, fourth, 1e-4 * fourth);
     }
   }
 }
