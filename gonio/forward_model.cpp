@@ -14,14 +14,17 @@ namespace {
 // virtual instrument integrates with) as the forward model uses it when the arm that carries
 // the cone is jittered (Gaussian, `sigma` radians per axis, measure.cpp). The mean of the
 // jittered readings integrates the model over the rule's points each displaced by the jitter.
-// For an isotropic spread of offsets z about the nominal direction (the rule's spokes, at least
-// five, are isotropic to fourth order), that mean agrees with the model's own average over a
+// For an isotropic spread of offsets z about the nominal direction (the rule's spokes are
+// isotropic to fourth order from five on; the virtual instrument's own rule shares the floor of
+// four), that mean agrees with the model's own average over a
 // rule of the same offsets' radial moments E|z|² and E|z|⁴ up to fifth order in z. A point at
 // angle r displaced by the jitter has E|z|² = r² + 2 sigma² and E|z|⁴ = r⁴ + 8 sigma² r² +
 // 8 sigma⁴. The rule keeps its points and weights and moves each ring from r² to a + b r², a and
 // b chosen to match both moments of the jittered rule. A rule of one ring cannot: it gets a
 // point at the centre besides. A point aperture is widened to the cone of radius 2 sigma, whose
-// second moment is the jitter's. Returns the rule; *encoding is the radius of the cone its area
+// second moment is the jitter's, and a rule whose inner rings would have to move inside the
+// axis to the cone of radius sqrt(radius² + 4 sigma²), whose second moment is the jittered
+// cone's. Returns the rule; *encoding is the radius of the cone its area
 // fractions u1 refer to (radius, or the widened one).
 std::vector<AperturePoint> JitteredRule(double radius, double lobe_width, double sigma,
                                         double* encoding) {
@@ -57,9 +60,14 @@ std::vector<AperturePoint> JitteredRule(double radius, double lobe_width, double
   }
   const double jittered_spread = spread + 4 * s2 * mean + 4 * s2 * s2;
   const double b = std::sqrt(jittered_spread / spread), a = mean + 2 * s2 - b * mean;
+  if (a + b * *std::min_element(r2.begin(), r2.end()) < 0) {
+    // An inner ring would need a negative r² (rings well inside 2 sigma: a lobe far sharper than
+    // the aperture): the cone widened to the jittered one's second moments instead.
+    *encoding = std::sqrt(radius * radius + 4 * s2);
+    return ApertureQuadrature(*encoding, lobe_width);
+  }
   for (size_t k = 0; k < rule.size(); ++k) {
-    const double r = std::sqrt(std::max(0.0, a + b * r2[k]));
-    rule[k].u1 = (1 - std::cos(r)) / one_minus_cos;
+    rule[k].u1 = (1 - std::cos(std::sqrt(a + b * r2[k]))) / one_minus_cos;
   }
   return rule;
 }
