@@ -244,27 +244,30 @@ std::shared_ptr<const RglBrdf> RglBrdf::FromTensor(const TensorFile& file,
                "field 'jacobian' is " + FormatNumber(flag) + ", expected 0 or 1");
   }
   brdf->jacobian_ = flag == 1.0;
-  if (brdf->jacobian_) {
-    std::shared_ptr<RglBrdf> preview(new RglBrdf(*brdf));
-    for (int p = 0; p < static_cast<int>(n_phi); ++p) {
-      for (int t = 0; t < static_cast<int>(n_theta); ++t) {
-        for (int row = 0; row < brdf->rows_; ++row) {
-          for (int col = 0; col < brdf->cols_; ++col) {
-            const double factor = brdf->GridNode(p, t, row, col).jacobian_factor;
-            for (int c = 0; c < 3; ++c) {
-              const int64_t slice = (int64_t{p} * static_cast<int64_t>(n_theta) + t) * 3 + c;
-              preview->rgb_values_[(slice * brdf->rows_ + row) * brdf->cols_ + col] *= factor;
-            }
+  return brdf;
+}
+
+std::shared_ptr<const TabulatedBrdf> RglBrdf::PreviewEvaluator() const {
+  if (!jacobian_) return nullptr;  // the stored values are f cos(theta_o) already
+  std::shared_ptr<RglBrdf> preview(new RglBrdf(*this));
+  const int n_phi = static_cast<int>(phi_i_.size()), n_theta = static_cast<int>(theta_i_.size());
+  for (int p = 0; p < n_phi; ++p) {
+    for (int t = 0; t < n_theta; ++t) {
+      for (int row = 0; row < rows_; ++row) {
+        for (int col = 0; col < cols_; ++col) {
+          const double factor = GridNode(p, t, row, col).jacobian_factor;
+          for (int c = 0; c < 3; ++c) {
+            const int64_t slice = (int64_t{p} * n_theta + t) * 3 + c;
+            preview->rgb_values_[(slice * rows_ + row) * cols_ + col] *= factor;
           }
         }
       }
     }
-    preview->rgb_ = Warp2D(brdf->cols_, brdf->rows_, preview->rgb_values_,
-                           {brdf->phi_i_, brdf->theta_i_, {0.0, 1.0, 2.0}}, false);
-    preview->factor_in_table_ = true;
-    brdf->preview_ = std::move(preview);
   }
-  return brdf;
+  preview->rgb_ =
+      Warp2D(cols_, rows_, preview->rgb_values_, {phi_i_, theta_i_, {0.0, 1.0, 2.0}}, false);
+  preview->factor_in_table_ = true;
+  return preview;
 }
 
 double RglBrdf::StoredChannel(int phi_index, int theta_index, int channel, int row, int col) const {

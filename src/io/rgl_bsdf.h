@@ -58,7 +58,8 @@ class RglBrdf : public TabulatedBrdf, public CellMeasure {
   // them the reference interpolates the stored value and multiplies by ndf(wm), whose fall
   // over a cell the stored values undo at the nodes only, which scallops f between the nodes
   // into rings on a sphere (docs/hdr.md).
-  std::shared_ptr<const TabulatedBrdf> PreviewEvaluator() const override { return preview_; }
+  // Made on each call (a render or a view asks once): reads, fits and energy never pay for it.
+  std::shared_ptr<const TabulatedBrdf> PreviewEvaluator() const override;
   double Measure(const Vec3& wi, const Vec3& wo) const override;  // CellMeasure
   std::string Name() const override;
 
@@ -94,7 +95,6 @@ class RglBrdf : public TabulatedBrdf, public CellMeasure {
   int rows_ = 0, cols_ = 0;
   bool isotropic_ = true, jacobian_ = true, reciprocal_ = false;
   bool factor_in_table_ = false;  // rgb_ holds stored x jacobian factor (the preview's table)
-  std::shared_ptr<const RglBrdf> preview_;
   Warp2D ndf_, sigma_, vndf_, rgb_;
   std::vector<double> rgb_values_;  // [phi_i, theta_i, 3, rows, cols], as stored
   int64_t clipped_negative_ = 0;
