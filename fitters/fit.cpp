@@ -94,13 +94,16 @@ FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string&
   return result;
 }
 
-void FinishFit(const PreparedSamples& prepared, const FitOptions& options, FitResult* result) {
+void FinishFit(const PreparedSamples& prepared, const FitOptions& options, FitResult* result,
+               const FitResult* diffuse_only) {
   const auto start = std::chrono::steady_clock::now();
   CheckFitEnergy(result);
   const ModelInfo& info = result->model.info();
-  std::optional<FitResult> diffuse_only;
-  if (info.has_lobe()) diffuse_only.emplace(FitPreparedSamples(prepared, info.diffuse, options));
-  AppendFitDiagnostics(prepared, result, diffuse_only ? &*diffuse_only : nullptr);  // stability.md
+  std::optional<FitResult> fitted;
+  if (info.has_lobe() && diffuse_only == nullptr) {
+    diffuse_only = &fitted.emplace(FitPreparedSamples(prepared, info.diffuse, options));
+  }
+  AppendFitDiagnostics(prepared, result, info.has_lobe() ? diffuse_only : nullptr);  // stability.md
   if (prepared.instrument != nullptr) {
     const std::string blur = ApertureBlurWarning(*prepared.instrument, result->model);
     if (!blur.empty()) result->warnings.push_back(blur);

@@ -116,8 +116,10 @@ FitResult FitModel(const Measurement& measurement, const std::string& model_name
 FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string& model_name,
                              const FitOptions& options, SubsampleOptimum* optimum = nullptr);
 // The energy check (energy_check.h) and the warnings (diagnostics.h) of a fit of `prepared`
-// under `options`; a model with a lobe is compared with its diffuse term fitted alone under the
-// same options (is the lobe more than noise?).
-void FinishFit(const PreparedSamples& prepared, const FitOptions& options, FitResult* result);
+// under `options`; a model with a lobe is compared with its diffuse term fitted alone to the same
+// samples under the same options (is the lobe more than noise?): `diffuse_only` when the caller
+// has that fit, else it is made here.
+void FinishFit(const PreparedSamples& prepared, const FitOptions& options, FitResult* result,
+               const FitResult* diffuse_only = nullptr);
 
 }  // namespace brdf::fitters

@@ -196,9 +196,20 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& given_o
     fits[best] = FitPreparedSamples(prepared, fits[best].model.name(), options, &optima[best]);
   }
   // The energy check and the diagnostics cost more than many fits of a small file: only the
-  // chosen fit gets them, unless the caller keeps every fit.
+  // chosen fit gets them, unless the caller keeps every fit. A lobed fit's diagnostics compare
+  // it with its diffuse term alone on every sample, which a candidate fitted on every sample
+  // already is.
+  const auto diffuse_candidate = [&](const FitResult& fit) -> const FitResult* {
+    if (on_subsample) return nullptr;
+    for (const FitResult& candidate : fits) {
+      if (candidate.model.name() == fit.model.info().diffuse) return &candidate;
+    }
+    return nullptr;
+  };
   for (size_t k = 0; k < fits.size(); ++k) {
-    if (k == best || all_fits != nullptr) FinishFit(prepared, options, &fits[k]);
+    if (k == best || all_fits != nullptr) {
+      FinishFit(prepared, options, &fits[k], diffuse_candidate(fits[k]));
+    }
   }
   Release(&prepared);
   const FitResult& chosen = fits[best];
