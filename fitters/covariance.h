@@ -7,9 +7,10 @@
 // same sums costs one pass — docs/fitting.md.) The model parameters' errors then follow by the
 // delta method through the parameterization's Jacobian (Jets).
 //
-// A logistic variable pushed against its bound (a parameter at 0, an albedo budget used up) has
-// a vanishing derivative and would make A singular: such variables are held out, and the
-// parameters that depend on them are reported as "not available". A lobe that vanishes at a zero
+// A logistic variable pushed against its bound (a parameter at 0) or left nothing to share (a
+// diffuse term whose albedo budget the lobe used up) has a vanishing derivative and would make A
+// singular: such variables are held out, and the parameters that depend on them are reported as
+// "not available". A lobe that vanishes at a zero
 // share (models/term.h: kVanishesAtZero) with its share at the lower bound in every channel has
 // no shape to measure; its shape is held out too.
 #pragma once
@@ -103,9 +104,17 @@ inline bool SandwichCovariance(const Eigen::MatrixXd& full_a, const Eigen::Matri
 template <typename M>
 bool VariableCovariance(bool grey_specular, const std::vector<double>& x, const NormalSums& sums,
                         Eigen::MatrixXd* covariance, std::string* note) {
-  const std::vector<bool> held = HeldVariables<M>(grey_specular, x, note);
+  std::vector<bool> held = HeldVariables<M>(grey_specular, x, note);
   const Eigen::MatrixXd a = sums.a.template selfadjointView<Eigen::Lower>();
   const Eigen::MatrixXd b = sums.b.template selfadjointView<Eigen::Lower>();
+  // A share whose column of A the rank test cannot see has nothing to share out: its budget is
+  // used up (the diffuse term after a lobe that took the whole albedo), so the data cannot move
+  // it. A shape with no information stays in, and the test reports it.
+  const std::vector<bool> shapes = VariableLayout<M>::Shapes(grey_specular);
+  const double largest = a.diagonal().maxCoeff();
+  for (size_t k = 0; k < held.size(); ++k) {
+    held[k] = held[k] || (!shapes[k] && !(a(k, k) > kRankTolerance * largest));
+  }
   return SandwichCovariance(a, b, held, covariance, note);
 }
 
@@ -125,7 +134,7 @@ std::vector<double> ParamStderr(const typename FitObjective<M>::Point& at,
   const int n = static_cast<int>(covariance.rows());
   const Eigen::MatrixXd gradients = ParamGradients<M>(at, n);
   // Held (at-the-bound) variables carry NaN on the diagonal and zeros elsewhere; a parameter
-  // that depends on one gets NaN, "not available".
+  // that depends on one, or on no variable at all, gets NaN, "not available".
   Eigen::MatrixXd finite_covariance = covariance;
   std::vector<bool> held(n);
   for (int k = 0; k < n; ++k) {
@@ -135,7 +144,8 @@ std::vector<double> ParamStderr(const typename FitObjective<M>::Point& at,
   std::vector<double> errors(M::kNumParams);
   for (int p = 0; p < M::kNumParams; ++p) {
     const Eigen::VectorXd gradient = gradients.row(p).transpose();
-    bool depends_on_held = false;
+    // A parameter no variable moves (a share of a used-up budget) is pinned, not measured.
+    bool depends_on_held = gradient.isZero(0.0);
     for (int k = 0; k < n; ++k) depends_on_held = depends_on_held || (held[k] && gradient[k] != 0);
     errors[p] = depends_on_held
                     ? kNaN

@@ -136,6 +136,33 @@ TEST(FitDiagnostics, LobeOnMatteDataIsNotIdentifiable) {
   }
 }
 
+// Data brighter than any beckmann lobe can be (5 % above f0 = 1, as a traced surface's
+// multiple scattering is): the lobe takes the whole albedo budget, f0 is pinned at 1 and the
+// diffuse share has nothing left to share. Neither is measured, but the width is: its standard
+// error is reported and no "not identifiable" warning fires. (The diffuse share's column of J^T J
+// vanishes; left in, it made the covariance rank-deficient and hid alpha's error.)
+TEST(FitDiagnostics, ALobeThatTakesTheWholeBudgetStillHasItsWidthMeasured) {
+  Measurement bright = SynthesizeOnHemisphere(ParseModel("beckmann:rho_d=0:f0=1:alpha=0.5"), {});
+  for (Sample& sample : bright.samples) sample.value *= 1.05;
+  const FitResult fit = FitModel(bright, "beckmann", FitOptions{});
+  ASSERT_TRUE(fit.converged);
+  const ParamInfo& f0 = *fit.model.info().FindParam("f0");
+  const ParamInfo& rho_d = *fit.model.info().FindParam("rho_d");
+  const ParamInfo& alpha = *fit.model.info().FindParam("alpha");
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_TRUE(f0.AtBound(fit.model.params()[f0.slot + c])) << fit.model.ToString();
+    EXPECT_TRUE(rho_d.AtBound(fit.model.params()[rho_d.slot + c])) << fit.model.ToString();
+    EXPECT_TRUE(std::isnan(fit.stderr_values[f0.slot + c]));
+    EXPECT_TRUE(std::isnan(fit.stderr_values[rho_d.slot + c]));
+  }
+  ASSERT_TRUE(fit.stderr_available) << fit.stderr_note;
+  const double width = fit.model.params()[alpha.slot];
+  const double error = fit.stderr_values[alpha.slot];
+  EXPECT_GT(error, 0);
+  EXPECT_LT(error, 0.01 * width);
+  EXPECT_FALSE(HasWarning(fit, "not identifiable")) << AllWarnings(fit);
+}
+
 // A faint lobe under 20 % noise: its peak, 5e-4 sr^-1 over a floor of 0.16, is 0.3 % of the
 // signal, and the ~2,000 readings inside it average the noise down to about that. Whatever the
 // noise's draw and the subsample's, the fitted lobe (grey or in one channel, at n = 1 or 1e5) is
