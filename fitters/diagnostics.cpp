@@ -133,11 +133,11 @@ double LobeExponentTerm(const LobeFrame& frame, double exponent, const Vec3& wi,
   return -exponent * std::log(std::min(cos_offset, 1.0));
 }
 
-// The diffuse part cannot be unresolved; only lobed fits whose lobe is still there are checked.
-// A lobe's weight is its share of the albedo (power cosine: A(e) rho_s; a microfacet lobe keeps
-// Schlick's grazing rise even at f0 = 0, so it never vanishes).
-bool LobeVanished(const FitResult& result) {
-  return !(result.model.LobeWeight() >= kVanishedLobeShare).any();
+// The diffuse part cannot be unresolved; only the lobes still there are checked. A lobe's weight
+// is its share of the albedo (power cosine: A(e) rho_s; a microfacet lobe keeps Schlick's
+// grazing rise even at f0 = 0, so it never vanishes).
+bool LobeVanished(const Model& model, const LobeInfo& lobe) {
+  return !(lobe.weight(model.params().data()) >= kVanishedLobeShare).any();
 }
 
 // Whether the lobe's width grows with its parameter (a roughness) or shrinks (an exponent).
@@ -145,29 +145,47 @@ bool WidthIsRoughness(const LobeInfo& lobe) {
   return lobe.shape_scale == models::ShapeScale::kRoughness;
 }
 
+// "lobe" for a model of one lobe; "first lobe", "second lobe" for a composition of two.
+std::string LobeLabel(const Model& model, size_t index) {
+  if (model.info().lobes.size() == 1) return "lobe";
+  return std::string(index == 0 ? "first" : "second") + " lobe";
+}
+
+// "roughness alpha" or "exponent n": the lobe's width parameter.
+std::string ShapeName(const Model& model, const LobeInfo& lobe) {
+  for (const ParamInfo& param : model.info().params) {
+    if (param.slot == lobe.shape_slot) {
+      return (WidthIsRoughness(lobe) ? "roughness " : "exponent ") + param.name;
+    }
+  }
+  return "width";
+}
+
 // "exponent n = 1e4" or "roughness alpha = 0.05": the lobe's width parameter as fitted.
-std::string ShapeText(const Model& model) {
-  const ParamInfo& shape = model.info().shape_param();
-  const char* what = WidthIsRoughness(model.info().lobes.front()) ? "roughness " : "exponent ";
-  return what + shape.name + " = " + Format("%.4g", model.params()[shape.slot]);
+std::string ShapeText(const Model& model, const LobeInfo& lobe) {
+  return ShapeName(model, lobe) + " = " + Format("%.4g", model.params()[lobe.shape_slot]);
 }
 
 void CheckLobeResolution(const std::vector<FitSample>& samples, FitResult* result) {
   const Model& model = result->model;
-  const double exponent = model.info().EquivalentExponent(model.params().data());
-  const LobeFrame frame = model.Lobe().frame;
-  const LobeResolution lobe = ResolveLobe(frame, exponent, samples);
-  if (lobe.flank_samples > 0) return;
-  std::string nearest = std::isfinite(lobe.nearest_off_peak_deg)
-                            ? Format("%.3g", lobe.nearest_off_peak_deg) + " deg"
-                            : std::string("nowhere");
-  result->warnings.push_back(
-      "lobe narrower than the sample spacing: the fitted lobe (" + ShapeText(model) +
-      ", half-width " + Format("%.3g", lobe.half_width_deg) + " deg in the " + frame.offset_name +
-      ") has no sample on its flank (" + Format("%.3g", lobe.half_width_deg / 2) + " to " +
-      Format("%.3g", 3 * lobe.half_width_deg) + " deg); the nearest sample off its peak is " +
-      nearest + " away, so the data bound the " +
-      "lobe's sharpness from below but do not determine it");
+  for (size_t index = 0; index < model.info().lobes.size(); ++index) {
+    const LobeInfo& info = model.info().lobes[index];
+    if (LobeVanished(model, info)) continue;
+    const double exponent = info.equivalent_exponent(model.params().data());
+    const LobeFrame frame = info.coordinates(model.params().data()).frame;
+    const LobeResolution lobe = ResolveLobe(frame, exponent, samples);
+    if (lobe.flank_samples > 0) continue;
+    std::string nearest = std::isfinite(lobe.nearest_off_peak_deg)
+                              ? Format("%.3g", lobe.nearest_off_peak_deg) + " deg"
+                              : std::string("nowhere");
+    result->warnings.push_back(
+        "lobe narrower than the sample spacing: the fitted " + LobeLabel(model, index) + " (" +
+        ShapeText(model, info) + ", half-width " + Format("%.3g", lobe.half_width_deg) +
+        " deg in the " + frame.offset_name + ") has no sample on its flank (" +
+        Format("%.3g", lobe.half_width_deg / 2) + " to " + Format("%.3g", 3 * lobe.half_width_deg) +
+        " deg); the nearest sample off its peak is " + nearest +
+        " away, so the data bound the lobe's sharpness from below but do not determine it");
+  }
 }
 
 void CheckIdentifiability(FitResult* result) {
@@ -175,36 +193,46 @@ void CheckIdentifiability(FitResult* result) {
   if (!result->stderr_available) {
     result->warnings.push_back("not identifiable: " + result->stderr_note);
   }
-  if (model.info().has_lobe()) {
-    if (LobeVanished(*result)) {
-      result->warnings.push_back(
-          "not identifiable: the lobe vanished (rho_s = 0 in every channel), so its "
-          "exponent is arbitrary; the data show no lobe (a lambert fit may be enough)");
-      return;  // the exponent's box and error mean nothing without a lobe
+  bool vanished = false;
+  for (size_t index = 0; index < model.info().lobes.size(); ++index) {
+    const LobeInfo& lobe = model.info().lobes[index];
+    const std::string label = LobeLabel(model, index);
+    if (LobeVanished(model, lobe)) {
+      const ParamInfo& share = *std::find_if(
+          model.info().params.begin(), model.info().params.end(),
+          [&](const ParamInfo& param) { return param.slot == lobe.first_slot; });
+      const bool alone = model.info().lobes.size() == 1;
+      result->warnings.push_back("not identifiable: the " + label + " vanished (" + share.name +
+                                 " = 0 in every channel), so its " + ShapeName(model, lobe) +
+                                 " is arbitrary; the data show no " + label +
+                                 (alone ? " (a lambert fit may be enough)" : ""));
+      vanished = true;  // the width's box and error mean nothing without the lobe
+      continue;
     }
     // The box of the width parameter (the lobe's fit range, models/term.h): an exponent in
     // [1, 1e6], or a roughness alpha in [1e-3, 1.5]. Sharper means a larger exponent but a
     // smaller alpha.
-    const LobeInfo& lobe = model.info().lobes.front();
     const bool roughness = WidthIsRoughness(lobe);
     const double value = model.params()[lobe.shape_slot];
     const double sharpest = roughness ? lobe.fit_shape_min : lobe.fit_shape_max;
     const double broadest = roughness ? lobe.fit_shape_max : lobe.fit_shape_min;
-    const std::string name = ShapeText(model).substr(0, ShapeText(model).find(" = "));
+    const std::string name = ShapeName(model, lobe);
+    const std::string whose = model.info().lobes.size() == 1 ? "" : " of the " + label;
     auto at = [&](double bound) { return std::abs(value - bound) <= 1e-3 * bound; };
     if (at(sharpest)) {
-      result->warnings.push_back("not identifiable: the " + name + " sits at the fitter's " +
+      result->warnings.push_back("not identifiable: the " + name + whose + " sits at the fitter's " +
                                  (roughness ? "lower bound " : "upper bound ") +
                                  FormatNumber(sharpest, 6) +
                                  "; the data ask for a lobe at least this sharp and cannot say "
                                  "how much sharper");
     } else if (at(broadest)) {
-      result->warnings.push_back("not identifiable: the " + name + " sits at the fitter's " +
+      result->warnings.push_back("not identifiable: the " + name + whose + " sits at the fitter's " +
                                  (roughness ? "upper bound " : "lower bound ") +
                                  FormatNumber(broadest, 6) +
                                  "; the data ask for a broader lobe than the model has");
     }
   }
+  if (vanished) return;
   if (!result->stderr_available) return;
   for (const ParamInfo& param : model.info().params) {
     for (int c = 0; c < param.channels; ++c) {
@@ -443,7 +471,10 @@ void AppendFitDiagnostics(const PreparedSamples& prepared, FitResult* result,
         result->termination + "); the parameters are the best found, not an optimum");
   }
   CheckIdentifiability(result);
-  if (result->model.info().has_lobe() && !LobeVanished(*result)) {
+  const Model& model = result->model;
+  const auto& lobes = model.info().lobes;
+  if (std::any_of(lobes.begin(), lobes.end(),
+                  [&](const LobeInfo& lobe) { return !LobeVanished(model, lobe); })) {
     if (diffuse_only != nullptr) CheckLobeSignificance(*diffuse_only, result);
     if (prepared.instrument == nullptr) {
       CheckLobeResolution(prepared.samples, result);
