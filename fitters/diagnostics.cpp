@@ -193,20 +193,20 @@ void CheckIdentifiability(FitResult* result) {
   if (!result->stderr_available) {
     result->warnings.push_back("not identifiable: " + result->stderr_note);
   }
-  bool vanished = false;
+  std::vector<int> vanished_shapes;  // the width of a vanished lobe: its error means nothing
   for (size_t index = 0; index < model.info().lobes.size(); ++index) {
     const LobeInfo& lobe = model.info().lobes[index];
     const std::string label = LobeLabel(model, index);
     if (LobeVanished(model, lobe)) {
-      const ParamInfo& share = *std::find_if(
-          model.info().params.begin(), model.info().params.end(),
-          [&](const ParamInfo& param) { return param.slot == lobe.first_slot; });
+      const ParamInfo& share =
+          *std::find_if(model.info().params.begin(), model.info().params.end(),
+                        [&](const ParamInfo& param) { return param.slot == lobe.first_slot; });
       const bool alone = model.info().lobes.size() == 1;
       result->warnings.push_back("not identifiable: the " + label + " vanished (" + share.name +
                                  " = 0 in every channel), so its " + ShapeName(model, lobe) +
                                  " is arbitrary; the data show no " + label +
                                  (alone ? " (a lambert fit may be enough)" : ""));
-      vanished = true;  // the width's box and error mean nothing without the lobe
+      vanished_shapes.push_back(lobe.shape_slot);  // its box means nothing either
       continue;
     }
     // The box of the width parameter (the lobe's fit range, models/term.h): an exponent in
@@ -220,21 +220,21 @@ void CheckIdentifiability(FitResult* result) {
     const std::string whose = model.info().lobes.size() == 1 ? "" : " of the " + label;
     auto at = [&](double bound) { return std::abs(value - bound) <= 1e-3 * bound; };
     if (at(sharpest)) {
-      result->warnings.push_back("not identifiable: the " + name + whose + " sits at the fitter's " +
-                                 (roughness ? "lower bound " : "upper bound ") +
-                                 FormatNumber(sharpest, 6) +
-                                 "; the data ask for a lobe at least this sharp and cannot say "
-                                 "how much sharper");
+      result->warnings.push_back(
+          "not identifiable: the " + name + whose + " sits at the fitter's " +
+          (roughness ? "lower bound " : "upper bound ") + FormatNumber(sharpest, 6) +
+          "; the data ask for a lobe at least this sharp and cannot say "
+          "how much sharper");
     } else if (at(broadest)) {
-      result->warnings.push_back("not identifiable: the " + name + whose + " sits at the fitter's " +
-                                 (roughness ? "upper bound " : "lower bound ") +
-                                 FormatNumber(broadest, 6) +
-                                 "; the data ask for a broader lobe than the model has");
+      result->warnings.push_back(
+          "not identifiable: the " + name + whose + " sits at the fitter's " +
+          (roughness ? "upper bound " : "lower bound ") + FormatNumber(broadest, 6) +
+          "; the data ask for a broader lobe than the model has");
     }
   }
-  if (vanished) return;
   if (!result->stderr_available) return;
   for (const ParamInfo& param : model.info().params) {
+    if (std::count(vanished_shapes.begin(), vanished_shapes.end(), param.slot) > 0) continue;
     for (int c = 0; c < param.channels; ++c) {
       const double value = model.params()[param.slot + c];
       const double error = result->stderr_values[param.slot + c];
