@@ -153,12 +153,8 @@ std::string LobeLabel(const Model& model, size_t index) {
 
 // "roughness alpha" or "exponent n": the lobe's width parameter.
 std::string ShapeName(const Model& model, const LobeInfo& lobe) {
-  for (const ParamInfo& param : model.info().params) {
-    if (param.slot == lobe.shape_slot) {
-      return (WidthIsRoughness(lobe) ? "roughness " : "exponent ") + param.name;
-    }
-  }
-  return "width";
+  return (WidthIsRoughness(lobe) ? "roughness " : "exponent ") +
+         model.info().ParamAtSlot(lobe.shape_slot).name;
 }
 
 // "exponent n = 1e4" or "roughness alpha = 0.05": the lobe's width parameter as fitted.
@@ -198,9 +194,7 @@ void CheckIdentifiability(FitResult* result) {
     const LobeInfo& lobe = model.info().lobes[index];
     const std::string label = LobeLabel(model, index);
     if (LobeVanished(model, lobe)) {
-      const ParamInfo& share =
-          *std::find_if(model.info().params.begin(), model.info().params.end(),
-                        [&](const ParamInfo& param) { return param.slot == lobe.first_slot; });
+      const ParamInfo& share = model.info().ParamAtSlot(lobe.first_slot);
       const bool alone = model.info().lobes.size() == 1;
       result->warnings.push_back("not identifiable: the " + label + " vanished (" + share.name +
                                  " = 0 in every channel), so its " + ShapeName(model, lobe) +

@@ -86,13 +86,11 @@ double ModelInfo::EquivalentExponent(const double* p) const {
   return has_lobe() ? lobes.front().equivalent_exponent(p) : 0.0;
 }
 
-const ParamInfo& ModelInfo::shape_param() const {
-  const ParamInfo* found = nullptr;
+const ParamInfo& ModelInfo::ParamAtSlot(int slot) const {
   for (const ParamInfo& param : params) {
-    if (param.slot == shape_slot()) found = &param;
+    if (param.slot == slot) return param;
   }
-  if (found == nullptr) throw UsageError("model '" + name + "' has no lobe");
-  return *found;
+  throw UsageError("model '" + name + "' has no parameter at slot " + std::to_string(slot));
 }
 
 std::vector<double> ModelInfo::DefaultParams() const {

@@ -49,7 +49,6 @@ struct ModelInfo {
   bool has_lobe() const { return !lobes.empty(); }
   // The first lobe's (every model with a lobe has one).
   int shape_slot() const { return has_lobe() ? lobes.front().shape_slot : -1; }
-  const ParamInfo& shape_param() const;  // only when has_lobe()
   // The first lobe's coordinates, its weight and width; for a model without a lobe the normal,
   // zero and 0.
   LobeCoordinates Lobe(const double* params) const;
@@ -57,6 +56,8 @@ struct ModelInfo {
   double EquivalentExponent(const double* params) const;
 
   const ParamInfo* FindParam(std::string_view param_name) const;
+  // The parameter whose values start at `slot` (a lobe's first_slot or shape_slot).
+  const ParamInfo& ParamAtSlot(int slot) const;
   std::vector<double> DefaultParams() const;
 };
 
