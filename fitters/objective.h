@@ -119,30 +119,6 @@ class FitObjective {
     return at;
   }
 
-  // 1/2 sum r^2 at `at`, the residuals alone (in plain doubles, through the model's Eval).
-  double HalfSquaredSum(const Point& at) const {
-    return DeterministicReduce(
-        BatchCount(), kBatchesPerChunk, 0.0,
-        [&](int64_t begin, int64_t end, double partial) {
-          const Prepared prepared = Prepare(at);
-          double residuals[3 * kMaxStackBatch];
-          for (int64_t b = begin; b < end; ++b) {
-            const size_t first = static_cast<size_t>(b) * batch_;
-            const int count = BatchSize(b);
-            std::vector<double> heap;
-            double* rows = residuals;
-            if (count > kMaxStackBatch) {
-              heap.resize(3 * static_cast<size_t>(count));
-              rows = heap.data();
-            }
-            for (int k = 0; k < count; ++k) Residuals(at, prepared, first + k, rows + 3 * k);
-            partial += 0.5 * Eigen::Map<const Eigen::VectorXd>(rows, 3 * count).squaredNorm();
-          }
-          return partial;
-        },
-        [](double a, double b) { return a + b; });
-  }
-
   // The squared residual norm (over the channels) of every sample at `at`.
   std::vector<double> SquaredResiduals(const Point& at) const {
     std::vector<double> squared(samples_.size());

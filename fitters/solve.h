@@ -2,8 +2,8 @@
 // stand-in of n + 1 residuals.
 //
 // Every step of Levenberg-Marquardt needs only the cost 1/2 |r|^2, the gradient J^T r and the
-// Gauss-Newton matrix J^T J of the rows at the current variables, and the cost alone at a trial
-// point. Those three are the blocks of the augmented Gram matrix
+// Gauss-Newton matrix J^T J of the rows at the current variables, and the cost at a trial point.
+// Those three are the blocks of the augmented Gram matrix
 //   M = [J r]^T [J r]   ((n + 1) x (n + 1), n the variables),
 // which the objective adds up batch by batch without forming J. Any W = [J' r'] with W^T W = M
 // has the same cost, gradient and Gauss-Newton matrix, so Ceres, handed the n + 1 residuals r'
@@ -15,11 +15,15 @@
 // W comes from the eigen decomposition of M scaled to a unit diagonal, D^-1 M D^-1 = U S U^T,
 // W = S^1/2 U^T D: each entry of W^T W is then exact to rounding relative to its own diagonal,
 // so a cost many orders below the curvature (a noise-free fit near its optimum) keeps its
-// digits. A trial point's cost is the rows' own (HalfSquaredSum), as the last residual.
+// digits. A trial point's cost is the sums' own, as the last residual.
 //
-// Ceres asks for the residuals and then the Jacobian at one point, and sometimes for the Jacobian
-// twice; its EvaluationCallback says when the point is new, and PointEvaluation does the pass
-// over the rows once per point and kind.
+// Ceres asks for the cost alone at a trial point and, once it has accepted the step, for the
+// Jacobian at the same point (sometimes twice); its EvaluationCallback says when the point is
+// new. PointEvaluation makes the sums at every new point, trial or not, in one pass over the
+// rows: the model's value comes with its gradient at little more than its own cost, and nearly
+// every step is accepted, so a cost-only pass at the trial point followed by the full pass cost
+// more (an `auto` fit of a bundled Cornell file 9 % more, a MERL table's blinn-phong fit 4 %;
+// docs/performance.md).
 #pragma once
 
 #include <ceres/ceres.h>
@@ -60,32 +64,23 @@ inline bool GramFactor(const NormalSums& sums, Eigen::MatrixXd* w) {
 }
 
 // The objective at the point Ceres is about to evaluate (the variables' own memory, which Ceres
-// fills before it calls PrepareForEvaluation): its cost alone, or W with it.
+// fills before it calls PrepareForEvaluation): its sums, cost and W, made once per point.
 template <typename M>
 class PointEvaluation final : public ceres::EvaluationCallback {
  public:
   PointEvaluation(const FitObjective<M>& objective, const double* x)
       : objective_(objective), x_(x) {}
 
-  void PrepareForEvaluation(bool evaluate_jacobians, bool new_evaluation_point) override {
-    if (new_evaluation_point) have_cost_ = have_w_ = false;
-    if (evaluate_jacobians ? have_w_ : have_cost_) return;
-    const typename FitObjective<M>::Point at = objective_.At(x_);
-    if (evaluate_jacobians) {
-      sums_ = objective_.Sums(at);
-      sums_point_.assign(x_, x_ + objective_.NumVariables());
-      ok_ = GramFactor(sums_, &w_);
-      cost_ = sums_.cost;
-      have_w_ = true;
-    } else {
-      cost_ = objective_.HalfSquaredSum(at);
-      ok_ = std::isfinite(cost_);
-    }
-    have_cost_ = true;
+  void PrepareForEvaluation(bool, bool new_evaluation_point) override {
+    if (have_w_ && !new_evaluation_point) return;
+    sums_ = objective_.Sums(objective_.At(x_));
+    sums_point_.assign(x_, x_ + objective_.NumVariables());
+    ok_ = GramFactor(sums_, &w_);
+    have_w_ = true;
   }
 
   bool ok() const { return ok_; }
-  double cost() const { return cost_; }
+  double cost() const { return sums_.cost; }
   bool has_w() const { return have_w_; }
   const Eigen::MatrixXd& w() const { return w_; }
   // The normal sums of the last Jacobian evaluation and the point it was at.
@@ -95,8 +90,7 @@ class PointEvaluation final : public ceres::EvaluationCallback {
  private:
   const FitObjective<M>& objective_;
   const double* x_;
-  bool have_cost_ = false, have_w_ = false, ok_ = false;
-  double cost_ = 0;
+  bool have_w_ = false, ok_ = false;
   Eigen::MatrixXd w_;
   NormalSums sums_;
   std::vector<double> sums_point_;
