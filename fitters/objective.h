@@ -274,10 +274,10 @@ class FitObjective {
     const double cos_theta_i = sample.cos_theta_i();
     const Rgb target = LossTarget(loss_, sample.value, cos_theta_i);
     for (int c = 0; c < 3; ++c) {
-      const double residual =
-          (LossPrediction(loss_, f[c], cos_theta_i) - target[c]) * sample.scale[c];
-      const double dr_df =
-          above ? sample.scale[c] * LossPredictionDerivative(loss_, f[c], cos_theta_i) : 0.0;
+      double derivative;
+      const double prediction = LossPredictionAndDerivative(loss_, f[c], cos_theta_i, &derivative);
+      const double residual = (prediction - target[c]) * sample.scale[c];
+      const double dr_df = above ? sample.scale[c] * derivative : 0.0;
       double u[kRows];
       for (int p = 0; p < kRows; ++p) u[p] = dr_df * df[c][p];
       visit(c, residual, u);

@@ -29,13 +29,26 @@ T LossPrediction(Loss loss, const T& f, double cos_theta_i) {
   if (loss == Loss::kSqrt || loss == Loss::kImage) return sqrt(f * cos_theta_i + kSqrtLossFloor);
   return f;
 }
-inline double LossPredictionDerivative(Loss loss, double f, double cos_theta_i) {
-  if (loss == Loss::kLog) return cos_theta_i / (1.0 + f * cos_theta_i);
-  if (loss == Loss::kCosineL2) return cos_theta_i;
-  if (loss == Loss::kSqrt || loss == Loss::kImage) {
-    return 0.5 * cos_theta_i / std::sqrt(f * cos_theta_i + kSqrtLossFloor);
+// LossPrediction in doubles, with its derivative in f in `*derivative`: the square root (or the
+// logarithm's argument) taken once for both.
+inline double LossPredictionAndDerivative(Loss loss, double f, double cos_theta_i,
+                                          double* derivative) {
+  if (loss == Loss::kLog) {
+    const double argument = 1.0 + f * cos_theta_i;
+    *derivative = cos_theta_i / argument;
+    return std::log(argument);
   }
-  return 1.0;
+  if (loss == Loss::kCosineL2) {
+    *derivative = cos_theta_i;
+    return f * cos_theta_i;
+  }
+  if (loss == Loss::kSqrt || loss == Loss::kImage) {
+    const double root = std::sqrt(f * cos_theta_i + kSqrtLossFloor);
+    *derivative = 0.5 * cos_theta_i / root;
+    return root;
+  }
+  *derivative = 1.0;
+  return f;
 }
 
 // The residuals of a batch of samples as a function of the fitter's variables x (one parameter
