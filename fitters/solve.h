@@ -83,7 +83,7 @@ class PointEvaluation final : public ceres::EvaluationCallback {
   double cost() const { return sums_.cost; }
   bool has_w() const { return have_w_; }
   const Eigen::MatrixXd& w() const { return w_; }
-  // The normal sums of the last Jacobian evaluation and the point it was at.
+  // The normal sums of the last point evaluated, and that point.
   const NormalSums& sums() const { return sums_; }
   const std::vector<double>& sums_point() const { return sums_point_; }
 
@@ -128,10 +128,9 @@ class GramCost final : public ceres::CostFunction {
 };
 
 // Minimizes the objective from `x` (updated in place) within the box [lower, upper]. When
-// `sums_at_end` is given and the solve's last Jacobian evaluation was at the final `x` (Ceres
-// ends after a step it has linearized at, unless a tolerance stops it at a trial point), it
-// receives the normal sums there and `*have_sums` is set: the standard errors at the optimum
-// then need no pass of their own.
+// `sums_at_end` is given and the solve's last evaluation was at the final `x` (unless Ceres
+// rejected its last trial point), it receives the normal sums there and `*have_sums` is set: the
+// standard errors at the optimum then need no pass of their own.
 template <typename M>
 ceres::Solver::Summary SolveLeastSquares(const FitObjective<M>& objective, std::vector<double>* x,
                                          const std::vector<double>& lower,
