@@ -465,14 +465,10 @@ std::vector<std::string> DesignWarnings(const Model& model) {
       const double lower = std::log(lobe.fit_shape_min), upper = std::log(lobe.fit_shape_max);
       const double clamped = std::clamp(std::log(shape), lower, upper);
       if (std::abs(std::log(shape) - clamped) > 1e-12 || !(shape > 0)) {
-        std::string name;
-        for (const ParamInfo& param : model.info().params) {
-          if (param.slot == lobe.shape_slot) name = param.name;
-        }
-        warnings.push_back(name + " = " + FormatNumber(shape, 6) +
-                           " lies outside the fit's range [" + FormatNumber(lobe.fit_shape_min, 6) +
-                           ", " + FormatNumber(lobe.fit_shape_max, 6) +
-                           "]: planned at the nearest end of it");
+        warnings.push_back(
+            model.info().ParamAtSlot(lobe.shape_slot).name + " = " + FormatNumber(shape, 6) +
+            " lies outside the fit's range [" + FormatNumber(lobe.fit_shape_min, 6) + ", " +
+            FormatNumber(lobe.fit_shape_max, 6) + "]: planned at the nearest end of it");
       }
     }
     return warnings;

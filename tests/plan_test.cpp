@@ -269,6 +269,19 @@ TEST(Plan, DGreedyBeatsUniformLogDet) {
   EXPECT_EQ(fitters::ChooseDesign(model, candidates, design).chosen, result.chosen);
 }
 
+// A width outside the fit's range is named in a warning, per lobe; a width inside raises none.
+TEST(Plan, AWidthOutsideTheFitRangeIsNamedAndAHealthyOneIsNot) {
+  EXPECT_TRUE(fitters::DesignWarnings(LoadModel("ggx:rho_d=0.1:f0=0.04:alpha=0.05")).empty());
+  const std::vector<std::string> rough =
+      fitters::DesignWarnings(LoadModel("ggx:rho_d=0.1:f0=0.04:alpha=3"));
+  ASSERT_EQ(rough.size(), 1u);
+  EXPECT_EQ(rough[0].rfind("alpha = 3 lies outside the fit's range [", 0), 0u) << rough[0];
+  const std::vector<std::string> second = fitters::DesignWarnings(
+      LoadModel("lambert+ggx+ggx:rho_d=0.05:f0=0.5:alpha=0.08:f0_2=0.05:alpha_2=3"));
+  ASSERT_EQ(second.size(), 1u);
+  EXPECT_EQ(second[0].rfind("alpha_2 = 3 lies outside", 0), 0u) << second[0];
+}
+
 // The library's budget errors reach Python users as well as the command line's: they speak of
 // the measurement budget, not of a command-line flag.
 TEST(Plan, BudgetErrorsNameTheBudgetNotAFlag) {
