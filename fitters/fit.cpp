@@ -2,8 +2,6 @@
 
 #include <ceres/ceres.h>
 #include <glog/logging.h>
-#include <tbb/info.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -83,21 +81,11 @@ FitResult FitPreparedSamples(const PreparedSamples& prepared, const std::string&
   (void)quiet_ceres;
   const auto start = std::chrono::steady_clock::now();
   const ModelInfo& info = FindModel(model_name);
-  // Every parallel loop of the fit runs in an arena of `threads` workers; no result depends on
-  // their number. A caller already in such an arena (`auto`, which fits its candidates side by
-  // side in one) keeps it: a fit in an arena of its own could not use the workers of the
-  // caller's, and `auto`'s two-lobe candidate, the last to finish, ran on one core of two.
-  const int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
-  const auto fit = [&] {
+  FitResult result = InFitArena(options.threads, [&] {
     return VisitModelType(model_name, [&](auto model_type) {
       return FitComposition<decltype(model_type)>(info, prepared, options, optimum);
     });
-  };
-  FitResult result = [&] {
-    if (tbb::this_task_arena::max_concurrency() == threads) return fit();
-    tbb::task_arena arena(threads);
-    return arena.execute(fit);
-  }();
+  });
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

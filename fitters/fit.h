@@ -6,6 +6,9 @@
 //   std::cout << fit.Summary() << "\n";
 #pragma once
 
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -104,6 +107,18 @@ struct SubsampleOptimum {
   std::vector<double> variables;  // the fitter's (parameterization.h)
   int iterations = 0;
 };
+
+// `work()` with every parallel loop in an arena of `threads` workers (0: as many as cores); no
+// fit's result depends on their number. A caller already in such an arena keeps it: work in an
+// arena of its own could not use the caller's workers (`auto` fits its candidates side by side in
+// one, and a candidate in an arena of its own, the last to finish, ran on one core of two).
+template <typename Work>
+auto InFitArena(int threads, Work&& work) {
+  const int workers = threads > 0 ? threads : tbb::info::default_concurrency();
+  if (tbb::this_task_arena::max_concurrency() == workers) return work();
+  tbb::task_arena arena(workers);
+  return arena.execute(work);
+}
 
 // The whole fit: PrepareSamples, FitPreparedSamples, FinishFit on the same samples, which are
 // then released.

@@ -1,7 +1,6 @@
 #include "fitters/select.h"
 
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <chrono>
 #include <cmath>
@@ -159,8 +158,7 @@ FitResult SelectAndFit(const Measurement& measurement, const FitOptions& given_o
   std::vector<std::optional<FitResult>> candidate_fits(names.size());
   std::vector<SubsampleOptimum> optima(names.size());
   std::vector<std::exception_ptr> errors(names.size());
-  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-  arena.execute([&] {
+  InFitArena(options.threads, [&] {
     tbb::parallel_for(size_t{0}, names.size(), [&](size_t k) {
       try {
         candidate_fits[k].emplace(FitPreparedSamples(contest, names[k], options, &optima[k]));
